@@ -1,0 +1,32 @@
+//! Validated triangle meshes for conformap: connectivity, boundary loops, topology and
+//! mesh surgery.
+//!
+//! Depends on nothing but `thiserror`; never touches files or matrices.
+//! [`TriMesh::try_new`] is the single gate every mesh passes: once it returns `Ok`, the
+//! mesh has finite coordinates, in-range indices, no degenerate, duplicate or unreferenced
+//! elements, manifold edges and vertices and a consistent orientation, so downstream crates
+//! need not check again.
+//!
+//! # Example
+//! ```
+//! use conformap_mesh::{Topology, TriMesh};
+//! // a square made of two triangles
+//! let mesh = TriMesh::try_new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//! assert_eq!(mesh.topology(), Topology::Disk);
+//! assert_eq!(mesh.boundary_loops()[0], vec![0, 1, 2, 3]); // counter-clockwise
+//! # Ok::<(), conformap_mesh::MeshError>(())
+//! ```
+
+mod error;
+mod surgery;
+mod trimesh;
+
+pub use error::MeshError;
+pub use surgery::{fill_holes, FilledMesh};
+pub use trimesh::{
+    bbox_diagonal, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions, WellConditioned,
+    DEGENERATE_AREA_REL, NO_HALFEDGE,
+};

@@ -1,0 +1,674 @@
+//! The validated triangle mesh and its half-edge connectivity.
+
+use crate::error::MeshError;
+
+/// Marker for "no half-edge" (a boundary half-edge has no opposite).
+pub const NO_HALFEDGE: u32 = u32::MAX;
+
+/// Faces whose area is at most `DEGENERATE_AREA_REL × diag²` (diag = bounding-box
+/// diagonal) are rejected as degenerate. Default `1e-14`: far below any real triangle
+/// (scans have relative areas around 1e-8 and up) and well above f64 round-off for the
+/// cross product (≈1e-16 relative), so only numerically collapsed faces trip it.
+pub const DEGENERATE_AREA_REL: f64 = 1e-14;
+
+/// Options of [`TriMesh::try_new_with`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct ValidationOptions {
+    /// Relative area threshold for degenerate faces. Default: [`DEGENERATE_AREA_REL`].
+    pub degenerate_area_rel: f64,
+}
+
+impl ValidationOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        degenerate_area_rel: DEGENERATE_AREA_REL,
+    };
+
+    /// Sets [`Self::degenerate_area_rel`].
+    #[must_use]
+    pub fn with_degenerate_area_rel(mut self, rel: f64) -> Self {
+        self.degenerate_area_rel = rel;
+        self
+    }
+}
+
+impl Default for ValidationOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A triangle mesh that is known to be valid: finite coordinates, indices in range,
+/// no degenerate or duplicate faces, no unreferenced vertices, manifold edges and
+/// vertices, consistent orientation.
+///
+/// Half-edge `h = 3 f + k` runs from `faces[f][k]` to `faces[f][(k + 1) % 3]`.
+#[derive(Debug, Clone)]
+pub struct TriMesh {
+    positions: Vec<[f64; 3]>,
+    faces: Vec<[u32; 3]>,
+    /// Opposite half-edge of each half-edge, or [`NO_HALFEDGE`] on the boundary.
+    opposite: Vec<u32>,
+    /// Oriented boundary loops (face interior on the left), each starting at its smallest vertex.
+    boundary_loops: Vec<Vec<u32>>,
+    /// `true` for vertices on a boundary loop.
+    is_boundary: Vec<bool>,
+    edge_count: usize,
+    components: usize,
+}
+
+impl TriMesh {
+    /// Validates `positions` and `faces` with the default [`ValidationOptions`].
+    ///
+    /// # Errors
+    /// The first defect found, as a [`MeshError`] naming the element.
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_mesh::TriMesh;
+    /// let mesh = TriMesh::try_new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [2, 1, 3]],
+    /// ).unwrap();
+    /// assert_eq!(mesh.boundary_loops().len(), 1);
+    /// assert_eq!(mesh.euler_characteristic(), 1);
+    /// ```
+    pub fn try_new(positions: Vec<[f64; 3]>, faces: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+        Self::try_new_with(positions, faces, &ValidationOptions::DEFAULT)
+    }
+
+    /// Validates `positions` and `faces` with the given options.
+    ///
+    /// # Errors
+    /// The first defect found, as a [`MeshError`] naming the element.
+    pub fn try_new_with(
+        positions: Vec<[f64; 3]>,
+        faces: Vec<[u32; 3]>,
+        options: &ValidationOptions,
+    ) -> Result<Self, MeshError> {
+        let n = positions.len();
+        if n == 0 {
+            return Err(MeshError::NoVertices);
+        }
+        if faces.is_empty() {
+            return Err(MeshError::NoFaces { vertices: n });
+        }
+        if n >= NO_HALFEDGE as usize || faces.len() * 3 >= NO_HALFEDGE as usize {
+            return Err(MeshError::TooManyVertices { vertices: n });
+        }
+        check_coordinates(&positions)?;
+        check_faces(&positions, &faces, options)?;
+        let opposite = match_halfedges(&faces)?;
+        let (is_boundary, boundary_loops) = check_fans_and_loops(n, &faces, &opposite)?;
+        let edge_count = opposite
+            .iter()
+            .enumerate()
+            .filter(|&(h, &o)| o == NO_HALFEDGE || (h as u32) < o)
+            .count();
+        let components = count_components(n, &faces);
+        Ok(Self {
+            positions,
+            faces,
+            opposite,
+            boundary_loops,
+            is_boundary,
+            edge_count,
+            components,
+        })
+    }
+
+    /// Vertex positions.
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// Triangles as vertex-index triples, counter-clockwise seen from the front.
+    pub fn faces(&self) -> &[[u32; 3]] {
+        &self.faces
+    }
+
+    /// Number of vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn num_faces(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Number of undirected edges.
+    pub fn num_edges(&self) -> usize {
+        self.edge_count
+    }
+
+    /// Opposite half-edge of every half-edge (`3 f + k`), [`NO_HALFEDGE`] on the boundary.
+    pub fn opposite_halfedges(&self) -> &[u32] {
+        &self.opposite
+    }
+
+    /// Oriented boundary loops: each loop follows the boundary half-edges (the surface lies
+    /// to the left), starts at its smallest vertex index; loops are sorted by that vertex.
+    pub fn boundary_loops(&self) -> &[Vec<u32>] {
+        &self.boundary_loops
+    }
+
+    /// Index of the longest boundary loop (ties: the first), or `None` for a closed mesh.
+    pub fn longest_boundary_loop(&self) -> Option<usize> {
+        let mut best: Option<usize> = None;
+        for (i, l) in self.boundary_loops.iter().enumerate() {
+            if best.is_none_or(|b| l.len() > self.boundary_loops[b].len()) {
+                best = Some(i);
+            }
+        }
+        best
+    }
+
+    /// Whether vertex `v` lies on a boundary loop.
+    pub fn is_boundary_vertex(&self, v: usize) -> bool {
+        self.is_boundary[v]
+    }
+
+    /// Boundary flag of every vertex.
+    pub fn boundary_flags(&self) -> &[bool] {
+        &self.is_boundary
+    }
+
+    /// Number of connected components.
+    pub fn num_components(&self) -> usize {
+        self.components
+    }
+
+    /// Euler characteristic χ = V − E + F.
+    pub fn euler_characteristic(&self) -> i64 {
+        self.num_vertices() as i64 - self.edge_count as i64 + self.num_faces() as i64
+    }
+
+    /// Genus of a connected mesh, from χ = 2 − 2g − b. `None` if the mesh has several
+    /// components (the genus is then per component).
+    pub fn genus(&self) -> Option<i64> {
+        if self.components != 1 {
+            return None;
+        }
+        Some((2 - self.euler_characteristic() - self.boundary_loops.len() as i64) / 2)
+    }
+
+    /// Length of the bounding-box diagonal.
+    pub fn bbox_diagonal(&self) -> f64 {
+        bbox_diagonal(&self.positions)
+    }
+
+    /// The topology class of the mesh, as the commands need it.
+    pub fn topology(&self) -> Topology {
+        match (self.components, self.genus(), self.boundary_loops.len()) {
+            (1, Some(0), 1) => Topology::Disk,
+            (1, Some(0), 0) => Topology::Sphere,
+            (1, Some(0), b) => Topology::MultiplyConnected { boundaries: b },
+            (1, Some(g), 0) => Topology::ClosedHigherGenus { genus: g },
+            (1, Some(g), b) => Topology::OpenHigherGenus {
+                genus: g,
+                boundaries: b,
+            },
+            (c, _, _) => Topology::SeveralComponents { components: c },
+        }
+    }
+
+    /// Vertex adjacency in compressed rows: neighbours of `v` are
+    /// `adj.neighbors[adj.offsets[v]..adj.offsets[v + 1]]`, sorted ascending.
+    pub fn vertex_adjacency(&self) -> Adjacency {
+        let n = self.num_vertices();
+        let mut counts = vec![0usize; n + 1];
+        for (h, &o) in self.opposite.iter().enumerate() {
+            let (a, b) = self.halfedge_vertices(h);
+            // each undirected edge once: boundary half-edge, or the smaller of the pair
+            if o == NO_HALFEDGE || (h as u32) < o {
+                counts[a as usize + 1] += 1;
+                counts[b as usize + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            counts[i + 1] += counts[i];
+        }
+        let mut fill = counts.clone();
+        let mut neighbors = vec![0u32; counts[n]];
+        for (h, &o) in self.opposite.iter().enumerate() {
+            if o == NO_HALFEDGE || (h as u32) < o {
+                let (a, b) = self.halfedge_vertices(h);
+                neighbors[fill[a as usize]] = b;
+                fill[a as usize] += 1;
+                neighbors[fill[b as usize]] = a;
+                fill[b as usize] += 1;
+            }
+        }
+        for v in 0..n {
+            neighbors[counts[v]..counts[v + 1]].sort_unstable();
+        }
+        Adjacency {
+            offsets: counts,
+            neighbors,
+        }
+    }
+
+    /// Start and end vertex of half-edge `h`.
+    pub fn halfedge_vertices(&self, h: usize) -> (u32, u32) {
+        let f = self.faces[h / 3];
+        (f[h % 3], f[(h % 3 + 1) % 3])
+    }
+
+    /// The CEM "well-conditioned" checks (Yueh et al. 2017, Definition 1).
+    pub fn well_conditioned(&self) -> WellConditioned {
+        let adj = self.vertex_adjacency();
+        let n = self.num_vertices();
+        let interior: Vec<bool> = self.is_boundary.iter().map(|b| !b).collect();
+        let boundary = self.is_boundary.clone();
+        let all = vec![true; n];
+        let lonely: Vec<u32> = (0..n)
+            .filter(|&v| {
+                self.is_boundary[v]
+                    && adj
+                        .neighbors_of(v)
+                        .iter()
+                        .all(|&w| self.is_boundary[w as usize])
+            })
+            .map(|v| v as u32)
+            .collect();
+        WellConditioned {
+            connected: induced_components(&adj, &all) <= 1,
+            interior_connected: induced_components(&adj, &interior) <= 1,
+            boundary_connected: induced_components(&adj, &boundary) <= 1,
+            boundary_vertices_without_interior_neighbor: lonely,
+        }
+    }
+}
+
+/// The topology class of a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Topology {
+    /// Connected, genus 0, one boundary loop: maps to the unit disk.
+    Disk,
+    /// Connected, genus 0, closed: maps to the unit sphere.
+    Sphere,
+    /// Connected, genus 0, several boundary loops: maps to a disk with circular holes.
+    MultiplyConnected {
+        /// Number of boundary loops.
+        boundaries: usize,
+    },
+    /// Connected, closed, genus ≥ 1.
+    ClosedHigherGenus {
+        /// The genus.
+        genus: i64,
+    },
+    /// Connected, genus ≥ 1, with boundary.
+    OpenHigherGenus {
+        /// The genus.
+        genus: i64,
+        /// Number of boundary loops.
+        boundaries: usize,
+    },
+    /// Several connected components.
+    SeveralComponents {
+        /// Number of components.
+        components: usize,
+    },
+}
+
+impl std::fmt::Display for Topology {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Disk => write!(f, "a disk (genus 0, one boundary loop)"),
+            Self::Sphere => write!(f, "a closed genus-0 surface"),
+            Self::MultiplyConnected { boundaries } => {
+                write!(f, "a genus-0 surface with {boundaries} boundary loops")
+            }
+            Self::ClosedHigherGenus { genus } => write!(f, "a closed surface of genus {genus}"),
+            Self::OpenHigherGenus { genus, boundaries } => {
+                write!(
+                    f,
+                    "a surface of genus {genus} with {boundaries} boundary loop(s)"
+                )
+            }
+            Self::SeveralComponents { components } => {
+                write!(f, "a mesh of {components} separate components")
+            }
+        }
+    }
+}
+
+/// Compressed vertex adjacency, see [`TriMesh::vertex_adjacency`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Adjacency {
+    /// Row offsets, length `n + 1`.
+    pub offsets: Vec<usize>,
+    /// Concatenated neighbour lists.
+    pub neighbors: Vec<u32>,
+}
+
+impl Adjacency {
+    /// Neighbours of vertex `v`, sorted.
+    pub fn neighbors_of(&self, v: usize) -> &[u32] {
+        &self.neighbors[self.offsets[v]..self.offsets[v + 1]]
+    }
+}
+
+/// Result of the CEM Definition 1 checks. CEM's convergence theory assumes all four hold;
+/// the solvers still run when they do not, and the report says which one failed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct WellConditioned {
+    /// (i) the mesh graph is connected.
+    pub connected: bool,
+    /// (ii) the subgraph on the interior vertices is connected.
+    pub interior_connected: bool,
+    /// (iii) the subgraph on the boundary vertices is connected.
+    pub boundary_connected: bool,
+    /// (iv) fails for these boundary vertices: none of their neighbours is interior.
+    pub boundary_vertices_without_interior_neighbor: Vec<u32>,
+}
+
+impl WellConditioned {
+    /// Whether all four conditions hold.
+    pub fn holds(&self) -> bool {
+        self.connected
+            && self.interior_connected
+            && self.boundary_connected
+            && self.boundary_vertices_without_interior_neighbor.is_empty()
+    }
+}
+
+/// Length of the bounding-box diagonal of a point set (0 for an empty set).
+pub fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if positions.is_empty() {
+        return 0.0;
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+}
+
+/// Area of the triangle `(a, b, c)` in 3D.
+pub fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let x = u[1] * v[2] - u[2] * v[1];
+    let y = u[2] * v[0] - u[0] * v[2];
+    let z = u[0] * v[1] - u[1] * v[0];
+    0.5 * (x * x + y * y + z * z).sqrt()
+}
+
+fn check_coordinates(positions: &[[f64; 3]]) -> Result<(), MeshError> {
+    for (vertex, p) in positions.iter().enumerate() {
+        for (k, &value) in p.iter().enumerate() {
+            if !value.is_finite() {
+                let axis = ['x', 'y', 'z'][k];
+                return Err(MeshError::NonFiniteCoordinate {
+                    vertex,
+                    axis,
+                    value,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_faces(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    options: &ValidationOptions,
+) -> Result<(), MeshError> {
+    let n = positions.len();
+    let diag = bbox_diagonal(positions);
+    let threshold = options.degenerate_area_rel * diag * diag;
+    let mut referenced = vec![false; n];
+    for (face, f) in faces.iter().enumerate() {
+        for &index in f {
+            if index as usize >= n {
+                return Err(MeshError::IndexOutOfRange {
+                    face,
+                    index,
+                    vertex_count: n,
+                });
+            }
+            referenced[index as usize] = true;
+        }
+        if f[0] == f[1] || f[0] == f[2] {
+            return Err(MeshError::RepeatedVertexInFace { face, vertex: f[0] });
+        }
+        if f[1] == f[2] {
+            return Err(MeshError::RepeatedVertexInFace { face, vertex: f[1] });
+        }
+        let area = triangle_area(
+            positions[f[0] as usize],
+            positions[f[1] as usize],
+            positions[f[2] as usize],
+        );
+        // `!(area > t)` also catches a NaN area from overflowing coordinates.
+        if !(area > threshold) {
+            return Err(MeshError::ZeroAreaFace {
+                face,
+                area,
+                threshold,
+            });
+        }
+    }
+    if let Some(vertex) = referenced.iter().position(|r| !r) {
+        let count = referenced.iter().filter(|r| !**r).count();
+        return Err(MeshError::UnreferencedVertex { vertex, count });
+    }
+    // duplicate faces: same vertex set, whatever the order
+    let mut keyed: Vec<([u32; 3], u32)> = faces
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let mut k = *f;
+            k.sort_unstable();
+            (k, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    let mut dup: Option<(usize, usize)> = None;
+    for w in keyed.windows(2) {
+        if w[0].0 == w[1].0 {
+            let cand = (w[1].1 as usize, w[0].1 as usize);
+            if dup.is_none_or(|d| cand.0 < d.0) {
+                dup = Some(cand);
+            }
+        }
+    }
+    if let Some((face, first)) = dup {
+        return Err(MeshError::DuplicateFace { face, first });
+    }
+    Ok(())
+}
+
+/// Pairs half-edges into opposites; rejects non-manifold edges and inconsistent orientation.
+fn match_halfedges(faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
+    let nh = faces.len() * 3;
+    let mut keys: Vec<(u64, u32)> = Vec::with_capacity(nh);
+    for (f, tri) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+            keys.push((key, (3 * f + k) as u32));
+        }
+    }
+    keys.sort_unstable();
+    let mut opposite = vec![NO_HALFEDGE; nh];
+    let mut i = 0;
+    let mut first_error: Option<(usize, MeshError)> = None;
+    while i < keys.len() {
+        let mut j = i + 1;
+        while j < keys.len() && keys[j].0 == keys[i].0 {
+            j += 1;
+        }
+        let a = (keys[i].0 >> 32) as u32;
+        let b = keys[i].0 as u32;
+        match j - i {
+            1 => {}
+            2 => {
+                let (h0, h1) = (keys[i].1 as usize, keys[i + 1].1 as usize);
+                let start = |h: usize| faces[h / 3][h % 3];
+                if start(h0) == start(h1) {
+                    let e = MeshError::InconsistentOrientation {
+                        face: h1 / 3,
+                        other: h0 / 3,
+                        a: start(h0),
+                        b: faces[h0 / 3][(h0 % 3 + 1) % 3],
+                    };
+                    if first_error.as_ref().is_none_or(|(f, _)| h1 / 3 < *f) {
+                        first_error = Some((h1 / 3, e));
+                    }
+                } else {
+                    opposite[h0] = h1 as u32;
+                    opposite[h1] = h0 as u32;
+                }
+            }
+            count => {
+                let fs: Vec<usize> = keys[i..j]
+                    .iter()
+                    .take(4)
+                    .map(|k| k.1 as usize / 3)
+                    .collect();
+                let at = fs[0];
+                // non-manifold edges outrank orientation problems at the same place
+                if first_error
+                    .as_ref()
+                    .is_none_or(|(f, e)| at < *f || !matches!(e, MeshError::NonManifoldEdge { .. }))
+                {
+                    first_error = Some((
+                        at,
+                        MeshError::NonManifoldEdge {
+                            a,
+                            b,
+                            count,
+                            faces: fs,
+                        },
+                    ));
+                }
+            }
+        }
+        i = j;
+    }
+    match first_error {
+        Some((_, e)) => Err(e),
+        None => Ok(opposite),
+    }
+}
+
+/// Checks that the faces around each vertex form one fan; returns boundary flags and loops.
+fn check_fans_and_loops(
+    n: usize,
+    faces: &[[u32; 3]],
+    opposite: &[u32],
+) -> Result<(Vec<bool>, Vec<Vec<u32>>), MeshError> {
+    let mut face_count = vec![0u32; n];
+    let mut out_he = vec![NO_HALFEDGE; n];
+    let mut boundary_out = vec![NO_HALFEDGE; n];
+    let mut boundary_out_count = vec![0u32; n];
+    for (f, tri) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let v = tri[k] as usize;
+            let h = (3 * f + k) as u32;
+            face_count[v] += 1;
+            if out_he[v] == NO_HALFEDGE {
+                out_he[v] = h;
+            }
+            if opposite[h as usize] == NO_HALFEDGE {
+                boundary_out[v] = h;
+                boundary_out_count[v] += 1;
+            }
+        }
+    }
+    let prev = |h: u32| -> u32 { 3 * (h / 3) + (h % 3 + 2) % 3 };
+    for v in 0..n {
+        let start = if boundary_out[v] != NO_HALFEDGE {
+            boundary_out[v]
+        } else {
+            out_he[v]
+        };
+        let mut h = start;
+        let mut visited = 0u32;
+        loop {
+            visited += 1;
+            let o = opposite[prev(h) as usize];
+            if o == NO_HALFEDGE || o == start || visited > face_count[v] {
+                break;
+            }
+            h = o;
+        }
+        if visited != face_count[v] || boundary_out_count[v] > 1 {
+            return Err(MeshError::NonManifoldVertex {
+                vertex: v,
+                faces: face_count[v] as usize,
+            });
+        }
+    }
+    let is_boundary: Vec<bool> = boundary_out.iter().map(|&h| h != NO_HALFEDGE).collect();
+    let mut loops = Vec::new();
+    let mut seen = vec![false; n];
+    for v in 0..n {
+        if !is_boundary[v] || seen[v] {
+            continue;
+        }
+        let mut lp = Vec::new();
+        let mut w = v;
+        while !seen[w] {
+            seen[w] = true;
+            lp.push(w as u32);
+            let h = boundary_out[w] as usize;
+            w = faces[h / 3][(h % 3 + 1) % 3] as usize;
+        }
+        loops.push(lp);
+    }
+    Ok((is_boundary, loops))
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[x as usize];
+        parent[x as usize] = parent[p as usize];
+        x = p;
+    }
+    x
+}
+
+fn count_components(n: usize, faces: &[[u32; 3]]) -> usize {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    for f in faces {
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, f[0]), find(&mut parent, f[k]));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    (0..n as u32).filter(|&v| find(&mut parent, v) == v).count()
+}
+
+fn induced_components(adj: &Adjacency, keep: &[bool]) -> usize {
+    let n = keep.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    for v in 0..n {
+        if !keep[v] {
+            continue;
+        }
+        for &w in adj.neighbors_of(v) {
+            if keep[w as usize] {
+                let (a, b) = (find(&mut parent, v as u32), find(&mut parent, w));
+                if a != b {
+                    parent[a.max(b) as usize] = a.min(b);
+                }
+            }
+        }
+    }
+    (0..n as u32)
+        .filter(|&v| keep[v as usize] && find(&mut parent, v) == v)
+        .count()
+}

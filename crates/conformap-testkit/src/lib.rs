@@ -1,0 +1,1 @@
+//! Test support for the conformap workspace: assert_near!, fixture loaders and analytic meshes (never published).

@@ -1,0 +1,1 @@
+//! End-to-end and real-mesh tests of the conformap workspace; the tests live in `tests/`.
