@@ -1,1 +1,64 @@
-//! Discrete operators for conformap: cotangent Laplacian, its interior/boundary blocks, areas, angles, and the sparse Cholesky facade.
+//! Discrete operators for conformap: cotangent Laplacian, its interior/boundary blocks,
+//! areas, angles, and the sparse Cholesky facade.
+//!
+//! Depends on `conformap-mesh` (the validated [`conformap_mesh::TriMesh`]), `sprs` for
+//! assembly and `faer` for factorization (see [`Cholesky`] for why faer and not sprs-ldl).
+//! Never decides which map is computed and never touches files.
+//!
+//! # Example
+//! ```
+//! use conformap_mesh::TriMesh;
+//! use conformap_operators::{cotan_laplacian, quadratic_form};
+//! use num_complex::Complex64;
+//! let mesh = TriMesh::try_new(
+//!     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//! let l = cotan_laplacian(&mesh);
+//! // the Dirichlet energy of the identity map of a planar mesh is its area
+//! let f: Vec<Complex64> = mesh.positions().iter().map(|p| Complex64::new(p[0], p[1])).collect();
+//! assert!((quadratic_form(&l, &f) - 1.0).abs() < 1e-14);
+//! # Ok::<(), conformap_mesh::MeshError>(())
+//! ```
+
+mod cholesky;
+mod geometry;
+mod laplacian;
+
+pub use cholesky::{relative_residual, Cholesky, CholeskyOptions, FactorStats, Ordering};
+pub use geometry::{
+    corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
+    triangle_cotangents,
+};
+pub use laplacian::{cotan_laplacian, mul_complex, quadratic_form, LaplacianBlocks, Partition};
+
+/// Errors of the operators crate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum OperatorError {
+    /// The matrix is not positive definite: the Cholesky pivot at this (permuted) column was
+    /// not positive. For a cotangent `L_II` this means the mesh has strongly negative
+    /// cotangent weights (badly non-Delaunay) or an interior part cut off from the boundary.
+    #[error("the matrix is not positive definite (Cholesky pivot {pivot} is not positive)")]
+    NotPositiveDefinite {
+        /// The failing pivot (in the permuted order).
+        pivot: usize,
+    },
+    /// A matrix given to the solver is not square CSC.
+    #[error("expected a square CSC matrix, got {rows} × {cols}")]
+    NotSquareCsc {
+        /// Rows.
+        rows: usize,
+        /// Columns.
+        cols: usize,
+    },
+    /// A custom ordering is not a permutation of `0..n`.
+    #[error("the custom ordering is not a permutation of 0..{n}")]
+    BadPermutation {
+        /// Dimension.
+        n: usize,
+    },
+    /// The backend failed for another reason (e.g. out of memory).
+    #[error("sparse factorization failed: {0}")]
+    Factorization(String),
+}
