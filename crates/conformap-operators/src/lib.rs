@@ -24,6 +24,7 @@
 mod cholesky;
 mod geometry;
 mod laplacian;
+mod lu;
 
 pub use cholesky::{relative_residual, Cholesky, CholeskyOptions, FactorStats, Ordering};
 pub use geometry::{
@@ -31,6 +32,7 @@ pub use geometry::{
     triangle_cotangents,
 };
 pub use laplacian::{cotan_laplacian, mul_complex, quadratic_form, LaplacianBlocks, Partition};
+pub use lu::LuSolver;
 
 /// Errors of the operators crate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

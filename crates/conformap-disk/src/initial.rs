@@ -1,0 +1,182 @@
+//! Initial boundary maps: Angenent et al.'s map (CEM Eq. 13–16) and the arc-length circle.
+
+use conformap_mesh::TriMesh;
+use conformap_operators::{face_areas, Cholesky, LaplacianBlocks, Partition};
+use num_complex::Complex64;
+
+use crate::problem::{polygon_area, DiskProblem};
+use crate::DiskError;
+
+/// Outcome of the Angenent initial map.
+#[derive(Debug, Clone)]
+pub struct InitialBoundary {
+    /// Boundary values on the unit circle, in boundary-loop order.
+    pub boundary: Vec<Complex64>,
+    /// The face `[a, b, c]` whose Dirac source defines the map.
+    pub face: usize,
+    /// Whether the map had to be conjugated to preserve orientation.
+    pub conjugated: bool,
+    /// Milliseconds spent in the factorization of the reduced Laplacian.
+    pub factor_ms: f64,
+}
+
+/// The face nearest the surface's centre of mass (area-weighted centroid), preferring faces
+/// without boundary vertices so that the singularity of Eq. 11 sits inside the surface.
+pub fn centre_face(mesh: &TriMesh) -> usize {
+    let areas = face_areas(mesh);
+    let pos = mesh.positions();
+    let centroid = |t: &[u32; 3]| -> [f64; 3] {
+        let mut c = [0.0; 3];
+        for &v in t {
+            for k in 0..3 {
+                c[k] += pos[v as usize][k] / 3.0;
+            }
+        }
+        c
+    };
+    let total: f64 = areas.iter().sum();
+    let mut m = [0.0; 3];
+    for (t, a) in mesh.faces().iter().zip(&areas) {
+        let c = centroid(t);
+        for k in 0..3 {
+            m[k] += c[k] * a / total;
+        }
+    }
+    let mut best = (f64::INFINITY, 0usize, true);
+    for (f, t) in mesh.faces().iter().enumerate() {
+        let c = centroid(t);
+        let d = (0..3).map(|k| (c[k] - m[k]).powi(2)).sum::<f64>();
+        let touches = t.iter().any(|&v| mesh.is_boundary_vertex(v as usize));
+        // interior faces first, then distance
+        if (!touches, -d) > (!best.2, -best.0) {
+            best = (d, f, touches);
+        }
+    }
+    best.1
+}
+
+/// The right-hand side of CEM Eq. 14 for face `[a, b, c]`: a discrete
+/// `(∂/∂u − i ∂/∂v) δ_p` in the local frame of the face (u along `ab`).
+pub fn angenent_rhs(mesh: &TriMesh, face: usize) -> [(u32, Complex64); 3] {
+    let t = mesh.faces()[face];
+    let p = |v: u32| mesh.positions()[v as usize];
+    let (pa, pb, pc) = (p(t[0]), p(t[1]), p(t[2]));
+    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let ab = sub(pb, pa);
+    let ab_len2 = dot(ab, ab);
+    let alpha = dot(sub(pc, pa), ab) / ab_len2;
+    let foot = [
+        pa[0] + alpha * ab[0],
+        pa[1] + alpha * ab[1],
+        pa[2] + alpha * ab[2],
+    ];
+    let h = dot(sub(pc, foot), sub(pc, foot)).sqrt();
+    let len = ab_len2.sqrt();
+    [
+        (t[0], Complex64::new(-1.0 / len, (1.0 - alpha) / h)),
+        (t[1], Complex64::new(1.0 / len, alpha / h)),
+        (t[2], Complex64::new(0.0, -1.0 / h)),
+    ]
+}
+
+/// Angenent's initial boundary map (CEM Algorithm 1, steps 2–4): solve `L f = b`
+/// (Eq. 13–14) with one vertex pinned to 0 (Theorem 1), then centralize (Eq. 15) and
+/// normalize (Eq. 16) the boundary values.
+///
+/// Orientation: Eq. 13–14 as written give the mirror image on the meshes we tried; rather
+/// than conjugating blindly, the boundary polygon's signed area is checked and the values
+/// conjugated when it is negative, so the result always preserves orientation.
+///
+/// # Errors
+/// [`DiskError::Operator`] if the reduced Laplacian cannot be factored;
+/// [`DiskError::BoundaryCollapsed`] if a boundary value is at the centre.
+pub fn angenent_boundary(problem: &DiskProblem<'_>) -> Result<InitialBoundary, DiskError> {
+    let mesh = problem.mesh();
+    let n = mesh.num_vertices();
+    let face = centre_face(mesh);
+    let boundary = &problem.partition().boundary;
+    // pin the first boundary vertex: L with its row and column removed is positive definite
+    let pinned = boundary[0];
+    let reduced = Partition::new(n, &[pinned]);
+    let t0 = std::time::Instant::now();
+    let blocks = LaplacianBlocks::new(problem.laplacian(), &reduced);
+    let factor = Cholesky::factor(&blocks.ii)?;
+    let factor_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let mut rhs = vec![Complex64::new(0.0, 0.0); n - 1];
+    for (v, val) in angenent_rhs(mesh, face) {
+        if v != pinned {
+            rhs[reduced.local[v as usize] as usize] += val;
+        }
+    }
+    let sol = factor.solve_complex(&rhs);
+    let full = reduced.assemble(&sol, &[Complex64::new(0.0, 0.0)]);
+    let mut fb = problem.partition().boundary_values(&full);
+    centralize_normalize(&mut fb, boundary, "initial map")?;
+    let conjugated = polygon_area(&fb) < 0.0;
+    if conjugated {
+        for z in &mut fb {
+            *z = z.conj();
+        }
+    }
+    Ok(InitialBoundary {
+        boundary: fb,
+        face,
+        conjugated,
+        factor_ms,
+    })
+}
+
+/// Centralization (CEM Eq. 15/24) and normalization (Eq. 16/25) of boundary values.
+///
+/// # Errors
+/// [`DiskError::NonFinite`] or [`DiskError::BoundaryCollapsed`] naming the vertex.
+pub fn centralize_normalize(
+    fb: &mut [Complex64],
+    boundary: &[u32],
+    stage: &'static str,
+) -> Result<(), DiskError> {
+    let mean = fb.iter().sum::<Complex64>() / fb.len() as f64;
+    for (k, z) in fb.iter_mut().enumerate() {
+        *z -= mean;
+        let r = z.norm();
+        if !r.is_finite() {
+            return Err(DiskError::NonFinite {
+                vertex: boundary[k] as usize,
+                stage,
+            });
+        }
+        if r <= f64::MIN_POSITIVE {
+            return Err(DiskError::BoundaryCollapsed {
+                vertex: boundary[k] as usize,
+                stage,
+            });
+        }
+        *z /= r;
+    }
+    Ok(())
+}
+
+/// Boundary values spaced on the unit circle by the 3D arc length along the loop
+/// (the usual starting point of harmonic disk maps), counter-clockwise from angle 0.
+pub fn arc_length_boundary(mesh: &TriMesh, boundary: &[u32]) -> Vec<Complex64> {
+    let p = mesh.positions();
+    let m = boundary.len();
+    let seg: Vec<f64> = (0..m)
+        .map(|k| {
+            let (a, b) = (p[boundary[k] as usize], p[boundary[(k + 1) % m] as usize]);
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        })
+        .collect();
+    let total: f64 = seg.iter().sum();
+    let mut s = 0.0;
+    let mut out = Vec::with_capacity(m);
+    for len in seg {
+        out.push(Complex64::from_polar(
+            1.0,
+            std::f64::consts::TAU * s / total,
+        ));
+        s += len;
+    }
+    out
+}
