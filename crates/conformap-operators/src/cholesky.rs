@@ -130,8 +130,8 @@ fn view(a: &CsMat<f64>) -> Result<SparseColMatRef<'_, usize, f64>, OperatorError
 }
 
 impl Cholesky {
-    /// Factors the symmetric positive definite matrix `a` (CSC, full or lower storage;
-    /// only the lower triangle is read) with the default options.
+    /// Factors the symmetric positive definite matrix `a` (CSC, full or upper storage;
+    /// only the upper triangle is read) with the default options.
     ///
     /// # Errors
     /// [`OperatorError::NotPositiveDefinite`] with the failing pivot, or
@@ -169,8 +169,15 @@ impl Cholesky {
         let (fwd, inv);
         let ordering = match &options.ordering {
             Ordering::Amd => SymmetricOrdering::Amd,
-            Ordering::Identity => SymmetricOrdering::Identity,
-            Ordering::Custom(p) => {
+            // faer's `SymmetricOrdering::Identity` skips the step that reduces a full
+            // symmetric matrix to one triangle and then fails on full storage (measured:
+            // "not positive definite" on an SPD L_II); an explicit identity permutation
+            // takes the normal path.
+            Ordering::Identity | Ordering::Custom(_) => {
+                let p: Vec<usize> = match &options.ordering {
+                    Ordering::Custom(p) => p.clone(),
+                    _ => (0..n).collect(),
+                };
                 if p.len() != n {
                     return Err(OperatorError::BadPermutation { n });
                 }
@@ -181,14 +188,14 @@ impl Cholesky {
                     }
                     seen[i] = k;
                 }
-                fwd = p.clone();
+                fwd = p;
                 inv = seen;
                 SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&fwd, &inv, n))
             }
         };
         let symbolic = factorize_symbolic_cholesky(
             mat.symbolic(),
-            Side::Lower,
+            Side::Upper,
             ordering,
             CholeskySymbolicParams::default(),
         )
@@ -240,7 +247,7 @@ impl Cholesky {
             .factorize_numeric_llt::<f64>(
                 &mut self.values,
                 mat,
-                Side::Lower,
+                Side::Upper,
                 Default::default(),
                 self.par,
                 MemStack::new(&mut mem),

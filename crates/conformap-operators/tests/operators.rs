@@ -1,0 +1,161 @@
+//! Laplacian assembly, blocks and the Cholesky facade, checked with numbers.
+
+use conformap_mesh::TriMesh;
+use conformap_operators::{
+    cotan_laplacian, mul_complex, quadratic_form, relative_residual, surface_area, Cholesky,
+    CholeskyOptions, LaplacianBlocks, LuSolver, Ordering, Partition,
+};
+use num_complex::Complex64;
+
+/// A jittered planar grid lifted onto a bump, `n × n` squares.
+fn bumpy_grid(n: u32, planar: bool) -> TriMesh {
+    let mut p = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+            // deterministic jitter keeps the grid valid but irregular
+            let jx = 0.2 / f64::from(n) * ((i * 7 + j * 3) as f64).sin();
+            let jy = 0.2 / f64::from(n) * ((i * 5 + j * 11) as f64).cos();
+            let z = if planar {
+                0.0
+            } else {
+                0.3 * (3.0 * x).sin() * (2.0 * y).cos()
+            };
+            p.push([x + jx, y + jy, z]);
+        }
+    }
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let mut f = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    TriMesh::try_new(p, f).unwrap()
+}
+
+#[test]
+fn laplacian_is_symmetric_with_zero_row_sums() {
+    let m = bumpy_grid(12, false);
+    let l = cotan_laplacian(&m);
+    let scale = l.diag().data().iter().copied().fold(0.0, f64::max);
+    let ones = vec![Complex64::new(1.0, 0.0); m.num_vertices()];
+    let r = mul_complex(&l, &ones);
+    assert!(r.iter().all(|z| z.norm() < 1e-13 * scale));
+    let t = l.transpose_view().to_csc();
+    for (a, b) in l.data().iter().zip(t.data()) {
+        assert!((a - b).abs() <= 1e-15 * scale);
+    }
+}
+
+#[test]
+fn dirichlet_energy_of_identity_is_area_and_of_affine_map_is_known() {
+    let m = bumpy_grid(10, true);
+    let l = cotan_laplacian(&m);
+    let area = surface_area(&m);
+    let z: Vec<Complex64> = m
+        .positions()
+        .iter()
+        .map(|p| Complex64::new(p[0], p[1]))
+        .collect();
+    assert!((quadratic_form(&l, &z) - area).abs() < 1e-13 * area);
+    // f = a z + b z̄ : E_D = (|a|² + |b|²) area
+    let (a, b) = (Complex64::new(1.3, -0.4), Complex64::new(0.2, 0.1));
+    let f: Vec<Complex64> = z.iter().map(|&w| a * w + b * w.conj()).collect();
+    let expected = (a.norm_sqr() + b.norm_sqr()) * area;
+    assert!((quadratic_form(&l, &f) - expected).abs() < 1e-12 * expected);
+}
+
+#[test]
+fn blocks_reassemble_the_laplacian_action() {
+    let m = bumpy_grid(8, false);
+    let l = cotan_laplacian(&m);
+    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
+    let blocks = LaplacianBlocks::new(&l, &part);
+    let f: Vec<Complex64> = (0..m.num_vertices())
+        .map(|k| Complex64::new((k as f64).sin(), (k as f64 * 0.3).cos()))
+        .collect();
+    let lf = mul_complex(&l, &f);
+    let (fi, fb) = (part.interior_values(&f), part.boundary_values(&f));
+    let top: Vec<Complex64> = mul_complex(&blocks.ii, &fi)
+        .iter()
+        .zip(blocks.ib_mul(&fb))
+        .map(|(a, b)| a + b)
+        .collect();
+    let bottom: Vec<Complex64> = blocks
+        .bi_mul(&fi)
+        .iter()
+        .zip(mul_complex(&blocks.bb, &fb))
+        .map(|(a, b)| a + b)
+        .collect();
+    for (k, &v) in part.interior.iter().enumerate() {
+        assert!((top[k] - lf[v as usize]).norm() < 1e-12);
+    }
+    for (k, &v) in part.boundary.iter().enumerate() {
+        assert!((bottom[k] - lf[v as usize]).norm() < 1e-12);
+    }
+    assert_eq!(part.assemble(&fi, &fb), f);
+}
+
+#[test]
+fn cholesky_solves_interior_block_to_round_off_with_every_ordering() {
+    let m = bumpy_grid(20, false);
+    let l = cotan_laplacian(&m);
+    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
+    let blocks = LaplacianBlocks::new(&l, &part);
+    let n = blocks.ii.rows();
+    let b: Vec<Complex64> = (0..n)
+        .map(|k| Complex64::new(1.0 + (k % 7) as f64, -(k as f64).sqrt()))
+        .collect();
+    let reversed: Vec<usize> = (0..n).rev().collect();
+    for ordering in [
+        Ordering::Amd,
+        Ordering::Identity,
+        Ordering::Custom(reversed),
+    ] {
+        let chol = Cholesky::factor_with(
+            &blocks.ii,
+            &CholeskyOptions::DEFAULT.with_ordering(ordering.clone()),
+        )
+        .unwrap_or_else(|e| panic!("{ordering:?}: {e}"));
+        let x = chol.solve_complex(&b);
+        assert!(relative_residual(&blocks.ii, &x, &b) < 1e-12);
+        assert!(chol.stats().nnz_factor >= n);
+    }
+    // refactor with a scaled matrix reuses the analysis
+    let mut chol = Cholesky::factor(&blocks.ii).unwrap();
+    let scaled = blocks.ii.map(|v| 2.0 * v);
+    chol.refactor(&scaled).unwrap();
+    let x = chol.solve_complex(&b);
+    assert!(relative_residual(&scaled, &x, &b) < 1e-12);
+    // the boundary block solves with LU
+    let lu = LuSolver::factor(&blocks.bb).unwrap();
+    let bb: Vec<Complex64> = (0..blocks.bb.rows())
+        .map(|k| Complex64::new(k as f64, 1.0))
+        .collect();
+    assert!(relative_residual(&blocks.bb, &lu.solve_complex(&bb), &bb) < 1e-12);
+}
+
+#[test]
+fn indefinite_matrix_is_reported_with_a_pivot() {
+    let m = bumpy_grid(4, false);
+    let l = cotan_laplacian(&m);
+    let negated = l.map(|v| -v);
+    let err = Cholesky::factor(&negated).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            conformap_operators::OperatorError::NotPositiveDefinite { .. }
+        ),
+        "{err:?}"
+    );
+    let bad = Cholesky::factor_with(
+        &l,
+        &CholeskyOptions::DEFAULT.with_ordering(Ordering::Custom(vec![0, 0])),
+    );
+    assert!(matches!(
+        bad,
+        Err(conformap_operators::OperatorError::BadPermutation { .. })
+    ));
+}
