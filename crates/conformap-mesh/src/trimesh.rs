@@ -449,8 +449,8 @@ fn check_faces(
             positions[f[1] as usize],
             positions[f[2] as usize],
         );
-        // `!(area > t)` also catches a NaN area from overflowing coordinates.
-        if !(area > threshold) {
+        // a NaN area (overflowing coordinates) is degenerate too
+        if area.is_nan() || area <= threshold {
             return Err(MeshError::ZeroAreaFace {
                 face,
                 area,

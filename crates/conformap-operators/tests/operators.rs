@@ -32,7 +32,7 @@ fn bumpy_grid(n: u32, planar: bool) -> TriMesh {
             f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
         }
     }
-    TriMesh::try_new(p, f).unwrap()
+    TriMesh::try_new(p, f).expect("valid grid")
 }
 
 #[test]

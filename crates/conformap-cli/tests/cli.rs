@@ -1,0 +1,295 @@
+//! End-to-end runs of the `conformap` binary on the fixtures.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures")
+        .join(name)
+}
+
+fn conformap(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_conformap"))
+        .args(args)
+        .output()
+        .expect("run conformap")
+}
+
+fn tmpdir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("conformap-cli-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("parse json")
+}
+
+#[test]
+fn disk_maps_spothead_and_metrics_agree_with_the_report() {
+    let d = tmpdir("spothead");
+    let (out, flat, rep) = (d.join("uv.obj"), d.join("flat.obj"), d.join("r.json"));
+    let o = conformap(&[
+        "disk",
+        s(&fixture("spothead.obj")),
+        "-o",
+        s(&out),
+        "--flat",
+        s(&flat),
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = json(&rep);
+    assert_eq!(r["command"], "disk");
+    assert_eq!(r["method"], "cem");
+    assert_eq!(r["input"]["vertices"], 4537);
+    assert_eq!(r["input"]["boundaries"], 1);
+    let m = &r["metrics"];
+    let ec = m["conformal_energy"].as_f64().unwrap();
+    // CEM on spothead: 0.01303; the arc-length harmonic map: 0.0202; best other tool 0.0130
+    assert!(ec < 0.0131 * 1.10, "E_C {ec}");
+    assert_eq!(m["flipped_faces"], 0);
+    assert!(m["circle_residual_max"].as_f64().unwrap() < 1e-12);
+    let history = r["solver"]["energy_history"].as_array().unwrap();
+    let best = r["solver"]["best_iteration"].as_u64().unwrap() as usize;
+    let min = history
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(history[best].as_f64().unwrap(), min);
+    assert!(
+        (ec - min).abs() <= 1e-9 * min,
+        "report E_C {ec} vs solver {min}"
+    );
+    for key in [
+        "read", "assemble", "factor", "solve", "metrics", "write", "total",
+    ] {
+        assert!(
+            r["timings_ms"][key].as_f64().unwrap() >= 0.0,
+            "timing {key}"
+        );
+    }
+    // judge the written files: both agree with the report to 1e-9 relative
+    for param in [&out, &flat] {
+        let o = conformap(&["metrics", s(&fixture("spothead.obj")), s(param), "--json"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
+        assert!(
+            (e - ec).abs() <= 1e-9 * ec,
+            "{}: {e} vs {ec}",
+            param.display()
+        );
+    }
+}
+
+#[test]
+fn harmonic_method_is_worse_than_cem() {
+    let d = tmpdir("harmonic");
+    let (out, rep) = (d.join("h.obj"), d.join("h.json"));
+    let o = conformap(&[
+        "disk",
+        s(&fixture("woody.obj")),
+        "-o",
+        s(&out),
+        "--method",
+        "harmonic",
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let h = json(&rep)["metrics"]["conformal_energy"].as_f64().unwrap();
+    let o = conformap(&[
+        "disk",
+        s(&fixture("woody.obj")),
+        "-o",
+        s(&out),
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success());
+    let c = json(&rep)["metrics"]["conformal_energy"].as_f64().unwrap();
+    // woody: harmonic 1.237, CEM 0.0691 (best other tool 0.0670)
+    assert!(c < 0.0670 * 1.10 && c < h / 10.0, "cem {c} harmonic {h}");
+}
+
+#[test]
+fn wrong_topology_is_bad_input_and_writes_nothing() {
+    let d = tmpdir("torus");
+    let out = d.join("t.obj");
+    let o = conformap(&["disk", s(&fixture("punctured_torus.obj")), "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("genus 1") && err.contains("1 boundary loop"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let o = conformap(&["disk", s(&fixture("spot.obj")), "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("closed genus-0"));
+    let o = conformap(&["disk", s(&fixture("halftunnel.obj")), "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("3 boundary loops"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn broken_files_name_the_line_and_write_nothing() {
+    let d = tmpdir("bad");
+    let out = d.join("o.obj");
+    for (file, needle) in [
+        (
+            "bad/nan_coordinate.obj",
+            "nan_coordinate.obj:3: vertex 1 has a non-finite coordinate",
+        ),
+        ("bad/bad_number.obj", "bad_number.obj:3:"),
+        (
+            "bad/index_out_of_range.obj",
+            "index_out_of_range.obj:5: vertex index 4 is out of range",
+        ),
+        ("bad/index_zero.obj", "index_zero.obj:5:"),
+        ("bad/too_few_corners.obj", "too_few_corners.obj:5:"),
+        (
+            "bad/degenerate_face.obj",
+            "degenerate_face.obj:7: face 1 is degenerate",
+        ),
+        (
+            "bad/duplicate_face.obj",
+            "duplicate_face.obj:6: face 1 duplicates face 0",
+        ),
+        (
+            "bad/unreferenced_vertex.obj",
+            "unreferenced_vertex.obj:4: vertex 2 is not used",
+        ),
+        (
+            "bad/nonmanifold_edge.obj",
+            "nonmanifold_edge.obj:9: edge (0, 1) is non-manifold",
+        ),
+        (
+            "bad/bowtie_vertex.obj",
+            "bowtie_vertex.obj:2: vertex 0 is non-manifold",
+        ),
+        (
+            "bad/inconsistent_orientation.obj",
+            "inconsistent_orientation.obj:7: faces 1 and 0",
+        ),
+        ("bad/empty.obj", "empty.obj: the mesh has no vertices"),
+        (
+            "bad/no_faces.obj",
+            "no_faces.obj: the mesh has 3 vertices but no faces",
+        ),
+        ("bad/garbage_line.obj", "garbage_line.obj:4:"),
+    ] {
+        let o = conformap(&["disk", s(&fixture(file)), "-o", s(&out)]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{file}: {err}");
+        assert!(
+            err.contains(needle),
+            "{file}: expected `{needle}` in: {err}"
+        );
+        assert!(!err.contains("panicked"), "{file}: {err}");
+        assert!(!out.exists(), "{file} left an output");
+    }
+    let o = conformap(&["disk", s(&d.join("missing.obj")), "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(1));
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let d = tmpdir("usage");
+    let o = conformap(&["disk", s(&fixture("woody.obj")), "-o", s(&d.join("o.stl"))]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let o = conformap(&["disk", s(&fixture("woody.obj"))]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = conformap(&[
+        "disk",
+        s(&fixture("woody.obj")),
+        "-o",
+        s(&d.join("o.obj")),
+        "--tol",
+        "nan",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!d.join("o.obj").exists());
+}
+
+#[test]
+fn strict_without_convergence_exits_3_and_writes_nothing() {
+    let d = tmpdir("strict");
+    let out = d.join("o.obj");
+    let o = conformap(&[
+        "disk",
+        s(&fixture("woody.obj")),
+        "-o",
+        s(&out),
+        "--max-iter",
+        "1",
+        "--strict",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn gltf_and_glb_outputs_round_trip_through_metrics() {
+    let d = tmpdir("gltf");
+    let rep = d.join("r.json");
+    for ext in ["glb", "gltf"] {
+        let out = d.join(format!("o.{ext}"));
+        let o = conformap(&[
+            "disk",
+            s(&fixture("woody.obj")),
+            "-o",
+            s(&out),
+            "--report",
+            s(&rep),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let ec = json(&rep)["metrics"]["conformal_energy"].as_f64().unwrap();
+        let o = conformap(&["metrics", s(&fixture("woody.obj")), s(&out), "--json"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
+        // glTF stores texture coordinates as f32
+        assert!((e - ec).abs() < 1e-4 * ec.max(1e-3), "{ext}: {e} vs {ec}");
+    }
+}
+
+#[test]
+fn info_reports_topology() {
+    let o = conformap(&["info", s(&fixture("halftunnel.obj")), "--json"]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["vertices"], 831);
+    assert_eq!(v["boundaries"], 3);
+    assert_eq!(v["genus"], 0);
+    let mut sizes: Vec<u64> = v["boundary_loop_sizes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_u64().unwrap())
+        .collect();
+    sizes.sort_unstable();
+    assert_eq!(sizes, vec![16, 32, 48]);
+    let o = conformap(&["info", s(&fixture("punctured_torus.obj"))]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("genus 1"));
+}
