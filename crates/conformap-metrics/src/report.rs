@@ -1,0 +1,110 @@
+//! The result of [`crate::planar_map_metrics`]: the `"metrics"` object of the JSON report.
+
+use serde::{Deserialize, Serialize};
+
+/// Angle distortion `|mesh corner angle − image corner angle|` in degrees, over the corners
+/// of the measured (non-degenerate) faces.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct AngleDistortion {
+    /// Mean.
+    pub mean: f64,
+    /// Population standard deviation.
+    pub sd: f64,
+    /// Maximum.
+    pub max: f64,
+    /// 95th percentile (nearest rank: the `⌈0.95 n⌉`-th smallest of the `n` corners).
+    pub p95: f64,
+}
+
+/// Statistics of the Beltrami coefficient modulus `|μ|` over the measured faces.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct BeltramiStats {
+    /// Mean.
+    pub mean: f64,
+    /// Population standard deviation.
+    pub sd: f64,
+    /// Maximum.
+    pub max: f64,
+}
+
+/// Statistics of the per-face log area ratio
+/// `log((image area / total image area) / (mesh area / total mesh area))`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct AreaDistortion {
+    /// Mean of its absolute value.
+    pub mean_abs: f64,
+    /// Population standard deviation of the (signed) log ratio.
+    pub sd: f64,
+}
+
+/// A histogram: `counts[k]` values fell in `[edges_deg[k], edges_deg[k + 1])` (the last bin
+/// is closed).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct Histogram {
+    /// Bin edges in degrees, `counts.len() + 1` of them; see
+    /// [`crate::ANGLE_HISTOGRAM_EDGES_DEG`].
+    pub edges_deg: Vec<f64>,
+    /// Number of values per bin.
+    pub counts: Vec<u64>,
+}
+
+/// How well one boundary loop's image lies on a circle.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct LoopCircle {
+    /// Index into `mesh.boundary_loops()`.
+    pub loop_index: usize,
+    /// Number of vertices on the loop.
+    pub vertices: usize,
+    /// Whether this is the outer loop.
+    pub outer: bool,
+    /// Centre `(u, v)` of the circle, in the coordinates of the map as given (before any
+    /// orientation fix): `(0, 0)` for an outer loop judged against the unit circle.
+    pub center: [f64; 2],
+    /// Radius of the circle (1 for an outer loop judged against the unit circle).
+    pub radius: f64,
+    /// `max ||f − c| − r| / r` over the loop's vertices (relative; for the unit circle the
+    /// same as absolute). 1 for a loop collapsed to a point.
+    pub residual_max: f64,
+}
+
+/// Quality metrics of a planar map; the first ten fields are the `"metrics"` object of the
+/// report schema in `design.md`, with the same names. Every number is finite.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct MapMetrics {
+    /// `E_C = E_D − A` (CEM Eq. 7) of the (orientation-fixed) map.
+    pub conformal_energy: f64,
+    /// `E_D = ½ fᴴ L f` (CEM Eq. 5), cotangent weights of the mesh.
+    pub dirichlet_energy: f64,
+    /// `A`, the signed image area of CEM Eq. 8 (boundary loops; faces for a closed mesh) of
+    /// the orientation-fixed map: never negative when the orientation is fixed.
+    pub image_area: f64,
+    /// Corner angle distortion, degrees.
+    pub angle_distortion_deg: AngleDistortion,
+    /// `|μ|`, `μ = f_z̄ / f_z` per face.
+    pub beltrami_abs: BeltramiStats,
+    /// Per-face log area ratio.
+    pub area_distortion_log: AreaDistortion,
+    /// Faces whose image has negative signed area (after the orientation fix).
+    pub flipped_faces: usize,
+    /// Faces whose image area is exactly zero (collinear or coincident image vertices).
+    pub degenerate_faces: usize,
+    /// Largest `residual_max` over [`Self::boundary_circles`] (0 for a closed mesh).
+    pub circle_residual_max: f64,
+    /// Whether the map as given was mirrored (negative image area) and was conjugated
+    /// before scoring.
+    pub orientation_reversed: bool,
+    /// Faces in the per-face statistics: all faces but the degenerate ones.
+    pub measured_faces: usize,
+    /// Histogram of the corner angle distortion, degrees.
+    pub angle_histogram: Histogram,
+    /// Index of the outer loop (`None` for a closed mesh).
+    pub outer_loop: Option<usize>,
+    /// One entry per boundary loop, in loop order.
+    pub boundary_circles: Vec<LoopCircle>,
+}
