@@ -1,1 +1,60 @@
-//! Mesh file I/O for conformap: OBJ and glTF/GLB readers and writers with errors that name the file and line.
+//! Mesh file I/O for conformap: OBJ and glTF/GLB readers and writers with errors that name
+//! the file and line.
+//!
+//! Depends on `conformap-mesh` (every mesh read passes [`TriMesh::try_new`]), `tobj`,
+//! `gltf`, `serde_json` and `thiserror`; never does any maths on the mesh and never prints.
+//!
+//! - [`read_mesh`] / [`read_mesh_from_bytes`]: OBJ (via `tobj`, with our own scan for line
+//!   numbers and checked indices), glTF and GLB (via `gltf`, with checked accessors, node
+//!   transforms and welding of seam-split vertices). They return a [`LoadedMesh`]: the
+//!   validated mesh, per-vertex texture coordinates if the file has them, and a
+//!   [`SourceInfo`] mapping mesh vertices and faces back to the file.
+//! - [`write_mesh_with_uv`]: the mesh with one texture coordinate per vertex;
+//!   [`write_flat`]: any points and triangles (a flat or spherical map). Output appears
+//!   complete or not at all.
+//! - [`IoError`]: the one error type; variants name the file and the line ([`Origin`]) or
+//!   glTF mesh/primitive/accessor.
+//!
+//! Vertex order is kept: for OBJ, mesh vertex `k` is the file's `k`-th `v` line, so `vt`
+//! index `k` of an output belongs to input vertex `k`. OBJ numbers are written in Rust's
+//! shortest round-trip form, so OBJ → OBJ is exact; glTF stores f32, so positions and
+//! texture coordinates pass through f32 there.
+//!
+//! # Example
+//! ```
+//! use conformap_io::{read_mesh_from_bytes, Format, IoError, ObjProblem};
+//!
+//! // a unit square as one quad (fan-triangulated), with per-vertex texture coordinates
+//! let obj = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+//!             vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+//!             f 1/1 2/2 3/3 4/4\n";
+//! let loaded = read_mesh_from_bytes(obj, Format::Obj)?;
+//! assert_eq!(loaded.mesh.faces(), &[[0, 1, 2], [0, 2, 3]]);
+//! assert_eq!(loaded.per_vertex_uv()?[2], [1.0, 1.0]);
+//!
+//! // errors name the line
+//! let err = read_mesh_from_bytes(b"v 0 0 0\nf 1 2 0\n", Format::Obj).unwrap_err();
+//! assert!(matches!(
+//!     err,
+//!     IoError::ObjSyntax { line: 2, problem: ObjProblem::IndexOutOfRange { index: 2, .. }, .. }
+//! ));
+//! # Ok::<(), IoError>(())
+//! ```
+//!
+//! [`TriMesh::try_new`]: conformap_mesh::TriMesh::try_new
+
+mod api;
+mod atomic;
+mod error;
+mod gltffile;
+mod loaded;
+mod objfile;
+
+pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
+pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
+pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctest;

@@ -1,0 +1,206 @@
+//! The entry points: read by extension, write by extension.
+
+use std::path::Path;
+
+use conformap_mesh::TriMesh;
+
+use crate::atomic::write_atomically;
+use crate::error::{IoError, WriteProblem};
+use crate::gltffile::{encode_gltf, read_gltf};
+use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+use crate::objfile::{encode_obj, encode_obj_with_uv, read_obj};
+
+/// The name errors use for data that did not come from a file.
+const MEMORY: &str = "<memory>";
+
+/// Reads a mesh from an `.obj`, `.gltf` or `.glb` file (chosen by extension).
+///
+/// OBJ: polygons are fan-triangulated; `vt`, `vn`, groups, objects and materials are
+/// tolerated (no `.mtl` is loaded); several objects are merged with the file's global
+/// vertex numbering. glTF/GLB: every triangle primitive of the default scene (node
+/// transforms applied; without scenes, every mesh untransformed), with bit-identical
+/// positions welded (see [`SourceInfo::weld_map`]); external `.bin` files and data URIs work.
+///
+/// # Errors
+/// [`IoError`] naming the file and the line (OBJ) or mesh, primitive and accessor (glTF);
+/// [`IoError::InvalidMesh`] when the triangles do not form a valid
+/// [`TriMesh`](conformap_mesh::TriMesh).
+///
+/// # Examples
+/// ```no_run
+/// let loaded = conformap_io::read_mesh("fixtures/woody.obj")?;
+/// assert_eq!(loaded.mesh.num_vertices(), 694);
+/// # Ok::<(), conformap_io::IoError>(())
+/// ```
+pub fn read_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, IoError> {
+    let path = path.as_ref();
+    let format = Format::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match format {
+        Format::Obj => read_obj(&bytes, path),
+        Format::Gltf | Format::Glb => {
+            let base = path.parent().unwrap_or(Path::new(""));
+            read_gltf(&bytes, path, Some(base), format)
+        }
+    }
+}
+
+/// Reads a mesh from bytes already in memory (for tests and fuzzing). Errors name the
+/// file `<memory>`; a glTF that refers to external files is an error.
+///
+/// # Errors
+/// As [`read_mesh`].
+///
+/// # Examples
+/// ```
+/// use conformap_io::{read_mesh_from_bytes, Format};
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+/// let loaded = read_mesh_from_bytes(obj, Format::Obj)?;
+/// assert_eq!(loaded.mesh.num_faces(), 1);
+/// # Ok::<(), conformap_io::IoError>(())
+/// ```
+pub fn read_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<LoadedMesh, IoError> {
+    let path = Path::new(MEMORY);
+    match format {
+        Format::Obj => read_obj(bytes, path),
+        Format::Gltf | Format::Glb => read_gltf(bytes, path, None, format),
+    }
+}
+
+/// Writes `mesh` with one texture coordinate per vertex (`uv[k]` belongs to vertex `k`),
+/// as `.obj` (`v`, `vt`, `f a/a b/b c/c`; exact round trip), `.gltf` (buffer embedded as a
+/// data URI) or `.glb` (f32 `POSITION` and `TEXCOORD_0`, `u32` indices).
+///
+/// If `source` describes a glTF/GLB read from which `mesh` came unchanged, glTF output
+/// keeps the file's vertex layout (its split vertices, with `uv` copied through the weld
+/// map), so per-vertex data of the original file still lines up. Otherwise the mesh's own
+/// vertices are written.
+///
+/// The file appears complete or not at all (written to a temporary sibling, then renamed).
+///
+/// # Errors
+/// [`IoError::BadWriteInput`] if `uv.len()` differs from the vertex count or a value is
+/// not finite (or, for glTF, not representable as f32); [`IoError::Write`] if the file
+/// cannot be written; [`IoError::UnknownFormat`] for another extension.
+pub fn write_mesh_with_uv(
+    path: impl AsRef<Path>,
+    mesh: &TriMesh,
+    uv: &[[f64; 2]],
+    source: Option<&SourceInfo>,
+) -> Result<(), IoError> {
+    let path = path.as_ref();
+    let format = Format::from_path(path)?;
+    let bad = |problem| IoError::BadWriteInput {
+        path: path.to_path_buf(),
+        problem,
+    };
+    if uv.len() != mesh.num_vertices() {
+        return Err(bad(WriteProblem::UvCount {
+            expected: mesh.num_vertices(),
+            found: uv.len(),
+        }));
+    }
+    check_finite(uv.iter().map(|t| t.as_slice())).map_err(bad)?;
+    let bytes = match format {
+        Format::Obj => encode_obj_with_uv(mesh.positions(), uv, mesh.faces()),
+        Format::Gltf | Format::Glb => {
+            let binary = format == Format::Glb;
+            match file_layout(mesh, uv, source) {
+                Some((p, t, f)) => encode_gltf(binary, &p, Some(&t), f),
+                None => encode_gltf(binary, mesh.positions(), Some(uv), mesh.faces()),
+            }
+            .map_err(bad)?
+        }
+    };
+    write_atomically(path, &bytes)
+}
+
+/// Writes points and triangles with no texture coordinates: a flat map `(u, v, 0)`, points
+/// on the unit sphere, or any mesh. Format by extension as in [`write_mesh_with_uv`].
+///
+/// # Errors
+/// [`IoError::BadWriteInput`] if a face index is out of range or a coordinate is not
+/// finite; [`IoError::Write`] if the file cannot be written.
+///
+/// # Examples
+/// ```
+/// let dir = std::env::temp_dir().join(format!("conformap-io-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let out = dir.join("flat.obj");
+/// conformap_io::write_flat(&out, &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]])?;
+/// let back = conformap_io::read_mesh(&out)?;
+/// assert_eq!(back.mesh.positions()[1], [1.0, 0.0, 0.0]);
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), conformap_io::IoError>(())
+/// ```
+pub fn write_flat(
+    path: impl AsRef<Path>,
+    points: &[[f64; 3]],
+    faces: &[[u32; 3]],
+) -> Result<(), IoError> {
+    let path = path.as_ref();
+    let format = Format::from_path(path)?;
+    let bad = |problem| IoError::BadWriteInput {
+        path: path.to_path_buf(),
+        problem,
+    };
+    for (face, f) in faces.iter().enumerate() {
+        if let Some(&index) = f.iter().find(|&&i| i as usize >= points.len()) {
+            return Err(bad(WriteProblem::FaceIndex {
+                face,
+                index,
+                vertex_count: points.len(),
+            }));
+        }
+    }
+    check_finite(points.iter().map(|p| p.as_slice())).map_err(bad)?;
+    let bytes = match format {
+        Format::Obj => encode_obj(points, faces),
+        Format::Gltf | Format::Glb => {
+            encode_gltf(format == Format::Glb, points, None, faces).map_err(bad)?
+        }
+    };
+    write_atomically(path, &bytes)
+}
+
+fn check_finite<'a>(rows: impl Iterator<Item = &'a [f64]>) -> Result<(), WriteProblem> {
+    for (vertex, row) in rows.enumerate() {
+        if let Some(&value) = row.iter().find(|x| !x.is_finite()) {
+            return Err(WriteProblem::NonFinite { vertex, value });
+        }
+    }
+    Ok(())
+}
+
+type Layout<'s> = (Vec<[f64; 3]>, Vec<[f64; 2]>, &'s [[u32; 3]]);
+
+/// The glTF file's own vertex layout, if `source` is a glTF read that `mesh` still matches
+/// (same faces through the weld map, every file vertex used).
+fn file_layout<'s>(
+    mesh: &TriMesh,
+    uv: &[[f64; 2]],
+    source: Option<&'s SourceInfo>,
+) -> Option<Layout<'s>> {
+    let src = source?;
+    let (map, file_faces) = (src.weld_map.as_ref()?, src.file_faces.as_ref()?);
+    let n = mesh.num_vertices();
+    if map.iter().any(|&m| m == NO_VERTEX || m as usize >= n)
+        || file_faces.len() != mesh.num_faces()
+    {
+        return None;
+    }
+    let same = file_faces.iter().zip(mesh.faces()).all(|(ff, mf)| {
+        ff.iter()
+            .zip(mf)
+            .all(|(&i, &m)| map.get(i as usize) == Some(&m))
+    });
+    if !same {
+        return None;
+    }
+    let positions = map.iter().map(|&m| mesh.positions()[m as usize]).collect();
+    let uv = map.iter().map(|&m| uv[m as usize]).collect();
+    Some((positions, uv, file_faces))
+}

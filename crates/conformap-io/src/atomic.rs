@@ -1,0 +1,45 @@
+//! Writing a file so that it is either complete or absent: a temporary file in the same
+//! directory, flushed, then renamed over the target.
+
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::error::IoError;
+
+static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `bytes` to `path` atomically (on the same file system, rename replaces the target
+/// in one step). On failure the temporary file is removed and `path` is untouched.
+///
+/// # Errors
+/// [`IoError::Write`] if the temporary file cannot be created, written or renamed.
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    let tmp = temp_sibling(path);
+    let result = (|| {
+        let mut file = fs::File::create(&tmp)?;
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        drop(file);
+        fs::rename(&tmp, path)
+    })();
+    result.map_err(|source| {
+        let _ = fs::remove_file(&tmp);
+        IoError::Write {
+            path: path.to_path_buf(),
+            source,
+        }
+    })
+}
+
+/// `dir/.name.conformap-PID-N.tmp` beside `path`.
+fn temp_sibling(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp_name = format!(".{name}.conformap-{}-{n}.tmp", std::process::id());
+    path.with_file_name(tmp_name)
+}

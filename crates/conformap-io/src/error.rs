@@ -1,0 +1,402 @@
+//! The one error type of this crate, and the places in a file it points at.
+
+use std::fmt;
+use std::path::PathBuf;
+
+use conformap_mesh::MeshError;
+
+/// Why a mesh file could not be read or written.
+///
+/// Every variant names the file; those about content also name the place in it (an OBJ line,
+/// or a glTF mesh, primitive and accessor), and each says what the user can do about it.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum IoError {
+    /// The file could not be opened or read. Fix: check the path and its permissions.
+    #[error("{}: cannot read the file: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The output (or its temporary sibling) could not be written or renamed into place.
+    /// Nothing is left at `path` in that case. Fix: check that the directory exists and is
+    /// writable, and that the disk is not full.
+    #[error("{}: cannot write the file: {source}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file name does not end in `.obj`, `.gltf` or `.glb` (case-insensitive).
+    /// Fix: rename the file or pick an output name with one of those extensions.
+    #[error(
+        "{}: unknown mesh format (expected a .obj, .gltf or .glb file name)",
+        path.display()
+    )]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A line of an OBJ file is malformed: see [`ObjProblem`] for what is wrong with it.
+    /// Fix: repair that line (the message quotes the offending token).
+    #[error("{}:{line}: {problem}", path.display())]
+    ObjSyntax {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong with the line.
+        problem: ObjProblem,
+    },
+    /// The file was parsed, but its triangles do not form a valid mesh (non-finite
+    /// coordinate, degenerate, duplicate or non-manifold element, ...). `origin` is the file
+    /// place of the element the [`MeshError`] names (`None` for whole-mesh problems such as
+    /// an empty file). Fix: the message of `source` says what to repair.
+    #[error("{}{}: {source}", path.display(), origin_suffix(origin.as_ref()))]
+    InvalidMesh {
+        /// The file.
+        path: PathBuf,
+        /// Where the offending vertex or face comes from.
+        origin: Option<Origin>,
+        /// The validation error, with 0-based mesh vertex/face indices.
+        source: MeshError,
+    },
+    /// Per-vertex texture coordinates were asked for (a `PARAM` input) but the file does not
+    /// give exactly one per vertex: see [`UvProblem`]. Fix: export the map with one texture
+    /// coordinate per vertex (no seams), or pass it as a flat mesh instead.
+    #[error("{}{}: {problem}", path.display(), origin_suffix(problem.origin()))]
+    NotPerVertexUv {
+        /// The file.
+        path: PathBuf,
+        /// Why the texture coordinates are not one per vertex.
+        problem: UvProblem,
+    },
+    /// The glTF/GLB container or JSON is invalid, or a buffer could not be loaded (missing
+    /// `.bin` file, bad data URI). Fix: check the file with the Khronos glTF validator.
+    #[error("{}: cannot load the glTF ({source})", path.display())]
+    Gltf {
+        /// The file.
+        path: PathBuf,
+        /// What the `gltf` crate said.
+        source: gltf::Error,
+    },
+    /// A glTF accessor, primitive or node cannot be used: wrong type, data outside its
+    /// buffer, index out of range, missing `POSITION`, sparse storage, a node cycle...
+    /// Fix: re-export the asset; the message names the mesh, primitive and accessor.
+    #[error("{}: {}{problem}", path.display(), gltf_place(*mesh, *primitive, *accessor))]
+    GltfData {
+        /// The file.
+        path: PathBuf,
+        /// Index of the glTF mesh, if the problem is inside one.
+        mesh: Option<usize>,
+        /// Index of the primitive within that mesh.
+        primitive: Option<usize>,
+        /// Index of the accessor, if the problem is in one.
+        accessor: Option<usize>,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The data handed to a writer is inconsistent: see [`WriteProblem`]. Nothing is written.
+    /// Fix: this is a caller bug or a non-finite map value; the message names the element.
+    #[error("{}: nothing written: {problem}", path.display())]
+    BadWriteInput {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// What is wrong with the data.
+        problem: WriteProblem,
+    },
+    /// The OBJ backend (`tobj`) returned data this reader did not expect. This is a bug in
+    /// conformap-io (or a changed `tobj`), not in the file: please report it with the file.
+    #[error("{}: internal error while reading OBJ: {message}", path.display())]
+    Backend {
+        /// The file.
+        path: PathBuf,
+        /// What did not match.
+        message: String,
+    },
+}
+
+/// Where in a file a vertex or face comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Origin {
+    /// A 1-based line of an OBJ file.
+    Line(usize),
+    /// A vertex of a glTF primitive (0-based index into its `POSITION` accessor).
+    GltfVertex {
+        /// glTF mesh index.
+        mesh: usize,
+        /// Primitive index within the mesh.
+        primitive: usize,
+        /// Vertex index within the primitive.
+        vertex: usize,
+    },
+    /// A triangle of a glTF primitive (0-based, after strips and fans are expanded).
+    GltfTriangle {
+        /// glTF mesh index.
+        mesh: usize,
+        /// Primitive index within the mesh.
+        primitive: usize,
+        /// Triangle index within the primitive.
+        triangle: usize,
+    },
+}
+
+impl fmt::Display for Origin {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Line(line) => write!(f, "line {line}"),
+            Self::GltfVertex {
+                mesh,
+                primitive,
+                vertex,
+            } => write!(f, "mesh {mesh}, primitive {primitive}, vertex {vertex}"),
+            Self::GltfTriangle {
+                mesh,
+                primitive,
+                triangle,
+            } => write!(f, "mesh {mesh}, primitive {primitive}, triangle {triangle}"),
+        }
+    }
+}
+
+/// What is wrong with one line of an OBJ file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ObjProblem {
+    /// The file is not UTF-8 text (the line holds the first invalid byte).
+    NotUtf8,
+    /// The line starts with a word that is not an OBJ statement.
+    UnknownStatement {
+        /// The first word of the line.
+        keyword: String,
+    },
+    /// A `v`, `vt` or `vn` line has the wrong number of values (`v`: 3, 4 or 6; `vt`: 2 or 3;
+    /// `vn`: 3).
+    WrongValueCount {
+        /// `v`, `vt` or `vn`.
+        keyword: String,
+        /// How many values the line has.
+        found: usize,
+    },
+    /// A `v`, `vt` or `vn` line has a value that is not a number, or `w` = 0.
+    BadNumber {
+        /// `v`, `vt` or `vn`.
+        keyword: String,
+    },
+    /// An `f` line has fewer than three corners.
+    TooFewCorners {
+        /// How many corners the line has.
+        found: usize,
+    },
+    /// A face corner is not of the form `v`, `v/vt`, `v//vn` or `v/vt/vn` with integers.
+    BadCorner {
+        /// The offending token.
+        token: String,
+    },
+    /// A face index is 0 (OBJ indices start at 1; negative ones count back from the end).
+    IndexZero {
+        /// `vertex`, `texture coordinate` or `normal`.
+        what: &'static str,
+    },
+    /// A face index points past the elements defined (for negative indices: before the first).
+    IndexOutOfRange {
+        /// `vertex`, `texture coordinate` or `normal`.
+        what: &'static str,
+        /// The index as written.
+        index: i64,
+        /// How many such elements there are (for negative indices: defined so far).
+        count: usize,
+    },
+}
+
+impl fmt::Display for ObjProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotUtf8 => write!(f, "the file is not UTF-8 text"),
+            Self::UnknownStatement { keyword } => {
+                write!(f, "`{keyword}` is not an OBJ statement (garbage line?)")
+            }
+            Self::WrongValueCount { keyword, found } => {
+                write!(f, "`{keyword}` line has {found} values")
+            }
+            Self::BadNumber { keyword } => write!(
+                f,
+                "`{keyword}` line has a value that is not a number (or w = 0)"
+            ),
+            Self::TooFewCorners { found } => {
+                write!(f, "face has {found} corner(s); a face needs at least 3")
+            }
+            Self::BadCorner { token } => write!(
+                f,
+                "face corner `{token}` is not v, v/vt, v//vn or v/vt/vn with integer indices"
+            ),
+            Self::IndexZero { what } => {
+                write!(f, "{what} index 0 (OBJ indices start at 1)")
+            }
+            Self::IndexOutOfRange { what, index, count } => {
+                write!(f, "{what} index {index} is out of range ({count} defined)")
+            }
+        }
+    }
+}
+
+/// Why a file's texture coordinates are not one per vertex.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum UvProblem {
+    /// The file has no texture coordinates (no `vt` in the faces, no `TEXCOORD_0`).
+    Absent,
+    /// Some face corners (or glTF primitives) have texture coordinates and some do not.
+    Missing {
+        /// The first corner's face line (OBJ) or primitive vertex (glTF) without one.
+        origin: Origin,
+    },
+    /// A vertex has two different texture coordinates: the map is cut (a seam) there.
+    Seam {
+        /// 0-based mesh vertex.
+        vertex: usize,
+        /// Where the second, different texture coordinate is given.
+        origin: Origin,
+        /// Where the first one is given.
+        first: Origin,
+    },
+}
+
+impl UvProblem {
+    /// The file place this problem points at, if any.
+    pub fn origin(&self) -> Option<&Origin> {
+        match self {
+            Self::Absent => None,
+            Self::Missing { origin } | Self::Seam { origin, .. } => Some(origin),
+        }
+    }
+}
+
+impl fmt::Display for UvProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Absent => write!(f, "the file has no texture coordinates"),
+            Self::Missing { .. } => write!(
+                f,
+                "a face corner has no texture coordinate while others have one"
+            ),
+            Self::Seam { vertex, first, .. } => write!(
+                f,
+                "vertex {vertex} gets a second, different texture coordinate (first at {first}): \
+                 the map has a seam, not one texture coordinate per vertex"
+            ),
+        }
+    }
+}
+
+/// What is wrong with the data handed to a writer.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum WriteProblem {
+    /// The number of texture coordinates differs from the number of vertices.
+    UvCount {
+        /// Number of vertices.
+        expected: usize,
+        /// Number of texture coordinates given.
+        found: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    FaceIndex {
+        /// 0-based face.
+        face: usize,
+        /// The index found.
+        index: u32,
+        /// Number of vertices.
+        vertex_count: usize,
+    },
+    /// A coordinate or texture coordinate is NaN or infinite (or, for glTF, outside the
+    /// f32 range).
+    NonFinite {
+        /// 0-based vertex.
+        vertex: usize,
+        /// The value.
+        value: f64,
+    },
+    /// More data than the format can index (glTF byte lengths are u32 in GLB).
+    TooLarge,
+    /// No vertex or no triangle: glTF accessors cannot be empty.
+    Empty,
+}
+
+impl fmt::Display for WriteProblem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UvCount { expected, found } => write!(
+                f,
+                "{found} texture coordinates for {expected} vertices (need one per vertex)"
+            ),
+            Self::FaceIndex {
+                face,
+                index,
+                vertex_count,
+            } => write!(
+                f,
+                "face {face} refers to vertex {index}, but there are only {vertex_count} vertices"
+            ),
+            Self::NonFinite { vertex, value } => write!(
+                f,
+                "vertex {vertex} has a value that cannot be written ({value})"
+            ),
+            Self::TooLarge => write!(f, "the mesh is too large for the format"),
+            Self::Empty => write!(f, "glTF needs at least one vertex and one triangle"),
+        }
+    }
+}
+
+/// The mesh element a [`MeshError`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Element {
+    Vertex(usize),
+    Face(usize),
+}
+
+/// The element a [`MeshError`] names. For a non-manifold edge, the third face on the edge
+/// (the first one too many), or the first if the list is shorter.
+pub(crate) fn mesh_error_element(error: &MeshError) -> Option<Element> {
+    match error {
+        MeshError::NonFiniteCoordinate { vertex, .. }
+        | MeshError::UnreferencedVertex { vertex, .. }
+        | MeshError::NonManifoldVertex { vertex, .. } => Some(Element::Vertex(*vertex)),
+        MeshError::IndexOutOfRange { face, .. }
+        | MeshError::RepeatedVertexInFace { face, .. }
+        | MeshError::ZeroAreaFace { face, .. }
+        | MeshError::DuplicateFace { face, .. }
+        | MeshError::InconsistentOrientation { face, .. } => Some(Element::Face(*face)),
+        MeshError::NonManifoldEdge { faces, .. } => {
+            faces.get(2).or(faces.first()).map(|&f| Element::Face(f))
+        }
+        _ => None,
+    }
+}
+
+/// `:LINE` for an OBJ line (as in `file.obj:12`), ` (mesh m, primitive p, ...)` for glTF.
+fn origin_suffix(origin: Option<&Origin>) -> String {
+    match origin {
+        Some(Origin::Line(line)) => format!(":{line}"),
+        Some(o) => format!(" ({o})"),
+        None => String::new(),
+    }
+}
+
+fn gltf_place(mesh: Option<usize>, primitive: Option<usize>, accessor: Option<usize>) -> String {
+    let mut s = String::new();
+    if let Some(m) = mesh {
+        s.push_str(&format!("mesh {m}, "));
+    }
+    if let Some(p) = primitive {
+        s.push_str(&format!("primitive {p}, "));
+    }
+    if let Some(a) = accessor {
+        s.push_str(&format!("accessor {a}, "));
+    }
+    s
+}

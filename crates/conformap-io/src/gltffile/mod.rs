@@ -1,0 +1,10 @@
+//! glTF 2.0 and GLB: reading via `gltf` (with checked accessors and welding), and writing.
+
+mod accessor;
+mod buffers;
+mod read;
+mod weld;
+mod write;
+
+pub(crate) use read::read_gltf;
+pub(crate) use write::encode_gltf;

@@ -1,0 +1,184 @@
+//! The scene's triangle soup and its welding into one validated mesh.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use conformap_mesh::TriMesh;
+
+use crate::error::{mesh_error_element, Element, IoError, Origin, UvProblem};
+use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+
+/// One primitive's share of the concatenated file vertices and faces.
+pub(crate) struct PrimRange {
+    pub(crate) mesh: usize,
+    pub(crate) primitive: usize,
+    pub(crate) vertex_start: usize,
+    pub(crate) face_start: usize,
+}
+
+/// Node instancing may repeat a primitive, so the scene can be far larger than the file.
+/// The soup may hold at most `INSTANCING_LIMIT ×` the vertices the buffers could store
+/// uninstanced (12 bytes each), plus [`SOUP_FLOOR`]; beyond that the file is rejected
+/// rather than allowed to exhaust memory.
+pub(crate) const INSTANCING_LIMIT: usize = 64;
+/// See [`INSTANCING_LIMIT`].
+pub(crate) const SOUP_FLOOR: usize = 1 << 20;
+
+/// The triangle primitives of the scene, concatenated, before welding.
+#[derive(Default)]
+pub(crate) struct Soup {
+    /// Most file vertices allowed (see [`INSTANCING_LIMIT`]).
+    pub(crate) limit: usize,
+    pub(crate) positions: Vec<[f64; 3]>,
+    pub(crate) uv: Vec<Option<[f64; 2]>>,
+    pub(crate) faces: Vec<[u32; 3]>,
+    pub(crate) prims: Vec<PrimRange>,
+    pub(crate) notes: Vec<String>,
+}
+
+impl Soup {
+    fn prim_of(&self, pick: impl Fn(&PrimRange) -> usize, k: usize) -> Option<&PrimRange> {
+        let i = self.prims.partition_point(|p| pick(p) <= k);
+        self.prims.get(i.checked_sub(1)?)
+    }
+
+    fn vertex_origin(&self, v: usize) -> Option<Origin> {
+        let p = self.prim_of(|p| p.vertex_start, v)?;
+        Some(Origin::GltfVertex {
+            mesh: p.mesh,
+            primitive: p.primitive,
+            vertex: v - p.vertex_start,
+        })
+    }
+
+    fn face_origin(&self, f: usize) -> Option<Origin> {
+        let p = self.prim_of(|p| p.face_start, f)?;
+        Some(Origin::GltfTriangle {
+            mesh: p.mesh,
+            primitive: p.primitive,
+            triangle: f - p.face_start,
+        })
+    }
+}
+
+/// Welds bit-identical positions of referenced file vertices (first occurrence wins),
+/// validates, and checks the texture coordinates.
+pub(crate) fn weld_and_validate(
+    mut soup: Soup,
+    path: &Path,
+    format: Format,
+) -> Result<LoadedMesh, IoError> {
+    let nfile = soup.positions.len();
+    let mut referenced = vec![false; nfile];
+    for &i in soup.faces.iter().flatten() {
+        referenced[i as usize] = true;
+    }
+    let mut map = vec![NO_VERTEX; nfile];
+    let mut first_file: Vec<usize> = Vec::new();
+    let mut keys: HashMap<[u64; 3], u32> = HashMap::new();
+    for (i, p) in soup.positions.iter().enumerate() {
+        if !referenced[i] {
+            continue;
+        }
+        // + 0.0 turns -0.0 into 0.0, so the two zeros weld
+        let key = p.map(|x| (x + 0.0).to_bits());
+        let next = first_file.len() as u32;
+        let v = *keys.entry(key).or_insert(next);
+        if v == next {
+            first_file.push(i);
+        }
+        map[i] = v;
+    }
+    let positions: Vec<[f64; 3]> = first_file.iter().map(|&i| soup.positions[i]).collect();
+    let faces: Vec<[u32; 3]> = soup
+        .faces
+        .iter()
+        .map(|f| f.map(|i| map[i as usize]))
+        .collect();
+    let mut notes = std::mem::take(&mut soup.notes);
+    let unreferenced = referenced.iter().filter(|r| !**r).count();
+    if unreferenced > 0 {
+        notes.push(format!(
+            "{unreferenced} file vertices are used by no triangle; dropped"
+        ));
+    }
+    if first_file.len() + unreferenced < nfile {
+        notes.push(format!(
+            "welded {} file vertices into {} (bit-identical positions)",
+            nfile - unreferenced,
+            first_file.len()
+        ));
+    }
+    let mesh = TriMesh::try_new(positions, faces).map_err(|e| {
+        let origin = match mesh_error_element(&e) {
+            Some(Element::Vertex(v)) => first_file.get(v).and_then(|&i| soup.vertex_origin(i)),
+            Some(Element::Face(f)) => soup.face_origin(f),
+            None => None,
+        };
+        IoError::InvalidMesh {
+            path: path.to_path_buf(),
+            origin,
+            source: e,
+        }
+    })?;
+    let (uv, uv_problem) = match weld_uv(&soup, &map, &referenced, first_file.len()) {
+        Ok(uv) => (Some(uv), None),
+        Err(p) => (None, Some(p)),
+    };
+    let mut source = SourceInfo::new(path.to_path_buf(), format);
+    source.file_vertex_count = nfile;
+    source.weld_map = Some(map);
+    source.file_faces = Some(soup.faces);
+    source.notes = notes;
+    Ok(LoadedMesh {
+        mesh,
+        uv,
+        uv_problem,
+        source,
+    })
+}
+
+/// One texture coordinate per welded vertex, or the first seam / missing one.
+fn weld_uv(
+    soup: &Soup,
+    map: &[u32],
+    referenced: &[bool],
+    n: usize,
+) -> Result<Vec<[f64; 2]>, UvProblem> {
+    let used = |i: &usize| referenced[*i];
+    if (0..soup.uv.len())
+        .filter(used)
+        .all(|i| soup.uv[i].is_none())
+    {
+        return Err(UvProblem::Absent);
+    }
+    // every soup vertex lies in some primitive's range; the fallback is never used
+    let origin = |i: usize| {
+        soup.vertex_origin(i).unwrap_or(Origin::GltfVertex {
+            mesh: 0,
+            primitive: 0,
+            vertex: i,
+        })
+    };
+    let mut first: Vec<Option<([f64; 2], usize)>> = vec![None; n];
+    for i in (0..soup.uv.len()).filter(used) {
+        let t = soup.uv[i].ok_or(UvProblem::Missing { origin: origin(i) })?;
+        let v = map[i] as usize;
+        match first[v] {
+            None => first[v] = Some((t, i)),
+            Some((t0, i0)) => {
+                if t0.map(f64::to_bits) != t.map(f64::to_bits) {
+                    return Err(UvProblem::Seam {
+                        vertex: v,
+                        origin: origin(i),
+                        first: origin(i0),
+                    });
+                }
+            }
+        }
+    }
+    first
+        .into_iter()
+        .map(|s| s.map(|(t, _)| t).ok_or(UvProblem::Absent))
+        .collect()
+}

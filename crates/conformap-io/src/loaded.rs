@@ -1,0 +1,139 @@
+//! What a reader returns: the validated mesh, optional texture coordinates, and where the
+//! mesh's elements came from in the file.
+
+use std::path::{Path, PathBuf};
+
+use conformap_mesh::TriMesh;
+
+use crate::error::{IoError, UvProblem};
+
+/// Marks a file vertex that no triangle uses in [`SourceInfo::weld_map`].
+pub const NO_VERTEX: u32 = u32::MAX;
+
+/// A mesh file format, chosen by the file's extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Format {
+    /// Wavefront OBJ text (`.obj`).
+    Obj,
+    /// glTF 2.0 JSON (`.gltf`); buffers external or embedded as data URIs.
+    Gltf,
+    /// Binary glTF 2.0 (`.glb`).
+    Glb,
+}
+
+impl Format {
+    /// The format named by the extension of `path` (`.obj`, `.gltf`, `.glb`, any case).
+    ///
+    /// # Errors
+    /// [`IoError::UnknownFormat`] for any other extension or none.
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_io::Format;
+    /// assert_eq!(Format::from_path("out/Head.GLB".as_ref())?, Format::Glb);
+    /// assert!(Format::from_path("head.stl".as_ref()).is_err());
+    /// # Ok::<(), conformap_io::IoError>(())
+    /// ```
+    pub fn from_path(path: &Path) -> Result<Self, IoError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("obj") => Ok(Self::Obj),
+            Some("gltf") => Ok(Self::Gltf),
+            Some("glb") => Ok(Self::Glb),
+            _ => Err(IoError::UnknownFormat {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
+
+    /// The usual file extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Self::Obj => "obj",
+            Self::Gltf => "gltf",
+            Self::Glb => "glb",
+        }
+    }
+}
+
+/// A mesh read from a file.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct LoadedMesh {
+    /// The validated mesh. For OBJ, vertex `k` is the file's `k`-th `v` line and face `k` the
+    /// `k`-th triangle (polygons fan-triangulated in place). For glTF, vertices are welded:
+    /// see [`SourceInfo::weld_map`].
+    pub mesh: TriMesh,
+    /// One texture coordinate per mesh vertex, in the OBJ convention (origin bottom-left;
+    /// glTF's `TEXCOORD_0` `(s, t)` becomes `(s, 1 − t)`), or `None` when the file has none
+    /// or not exactly one per vertex (see [`Self::uv_problem`]).
+    pub uv: Option<Vec<[f64; 2]>>,
+    /// Why [`Self::uv`] is `None`; `None` when it is `Some`.
+    pub uv_problem: Option<UvProblem>,
+    /// Where the mesh came from and how its elements map to the file.
+    pub source: SourceInfo,
+}
+
+impl LoadedMesh {
+    /// The per-vertex texture coordinates, for inputs that carry a map (`PARAM`).
+    ///
+    /// # Errors
+    /// [`IoError::NotPerVertexUv`] when the file has none, some corners lack one, or a vertex
+    /// has two different ones (a seam); the error names the line or glTF primitive vertex.
+    pub fn per_vertex_uv(&self) -> Result<&[[f64; 2]], IoError> {
+        match (&self.uv, &self.uv_problem) {
+            (Some(uv), _) => Ok(uv),
+            (None, problem) => Err(IoError::NotPerVertexUv {
+                path: self.source.path.clone(),
+                problem: problem.clone().unwrap_or(UvProblem::Absent),
+            }),
+        }
+    }
+}
+
+/// Where a mesh came from and how its vertices and faces map back to the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct SourceInfo {
+    /// The file read (`<memory>` for the `_from_bytes` readers).
+    pub path: PathBuf,
+    /// Its format.
+    pub format: Format,
+    /// Vertices as the file stores them: OBJ `v` lines, or glTF `POSITION` elements of all
+    /// triangle primitives (per node instance, concatenated in traversal order).
+    pub file_vertex_count: usize,
+    /// OBJ: the 1-based line of each vertex. `None` for glTF.
+    pub vertex_lines: Option<Vec<usize>>,
+    /// OBJ: the 1-based line of each face (a polygon line gives several faces). `None` for
+    /// glTF.
+    pub face_lines: Option<Vec<usize>>,
+    /// glTF: for each file vertex, the mesh vertex it was welded into ([`NO_VERTEX`] if no
+    /// triangle uses it). Bit-identical positions weld; the first occurrence fixes the mesh
+    /// vertex's number, so mesh vertices are in order of first occurrence. `None` for OBJ.
+    pub weld_map: Option<Vec<u32>>,
+    /// glTF: the faces in file-vertex numbering (same order as the mesh's faces), so a
+    /// writer can reproduce the file's vertex layout. `None` for OBJ.
+    pub file_faces: Option<Vec<[u32; 3]>>,
+    /// Things that were ignored or adjusted while reading (non-triangle glTF primitives,
+    /// OBJ lines or points, ...), for the caller to show. Empty when nothing was.
+    pub notes: Vec<String>,
+}
+
+impl SourceInfo {
+    pub(crate) fn new(path: PathBuf, format: Format) -> Self {
+        Self {
+            path,
+            format,
+            file_vertex_count: 0,
+            vertex_lines: None,
+            face_lines: None,
+            weld_map: None,
+            file_faces: None,
+            notes: Vec::new(),
+        }
+    }
+}
