@@ -1,1 +1,108 @@
-fn main() {}
+//! Benchmarks of `conformap disk` stages on real and generated meshes.
+//!
+//! ```text
+//! cargo run --release -p conformap-bench -- [--runs N] [--method cem|harmonic|...] MESH... [gen:250k gen:1m ...]
+//! ```
+//!
+//! Each (mesh, run) executes in a child process of this binary, so that the peak resident
+//! set size (VmHWM) is that run's alone; the parent prints a Markdown table of medians.
+//! `gen:N` (N like `250k`, `1m`, `2m`) is a bumpy height field over a square with about N
+//! faces, generated in code, written once to a temporary OBJ and then read like any file.
+
+mod generate;
+mod stages;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::stages::StageRow;
+
+fn usage() -> ! {
+    eprintln!(
+        "usage: conformap-bench [--runs N] [--method M] MESH.obj... [gen:250k|gen:500k|gen:1m|gen:2m ...]\n       \
+         conformap-bench --child MESH METHOD   (internal)"
+    );
+    std::process::exit(2)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("--child") {
+        let (Some(mesh), Some(method)) = (args.get(1), args.get(2)) else {
+            usage()
+        };
+        match stages::run_once(Path::new(mesh), method) {
+            Ok(row) => println!("{}", row.to_line()),
+            Err(e) => {
+                eprintln!("{mesh}: {e}");
+                std::process::exit(1);
+            }
+        }
+        return;
+    }
+    let mut runs = 3usize;
+    let mut method = "cem".to_string();
+    let mut inputs = Vec::new();
+    let mut it = args.into_iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--runs" => {
+                runs = it
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or_else(|| usage())
+            }
+            "--method" => method = it.next().unwrap_or_else(|| usage()),
+            "-h" | "--help" => usage(),
+            _ => inputs.push(a),
+        }
+    }
+    if inputs.is_empty() {
+        usage();
+    }
+    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("conformap-bench"));
+    println!("method `{method}`, median of {runs} runs, each in its own process; times in ms\n");
+    println!("{}", StageRow::header());
+    for input in inputs {
+        let path = match input.strip_prefix("gen:") {
+            Some(size) => match generate::generated_obj(size) {
+                Ok(p) => p,
+                Err(e) => {
+                    eprintln!("{input}: {e}");
+                    continue;
+                }
+            },
+            None => PathBuf::from(&input),
+        };
+        let mut rows = Vec::new();
+        for _ in 0..runs {
+            let out = Command::new(&exe)
+                .arg("--child")
+                .arg(&path)
+                .arg(&method)
+                .output();
+            match out {
+                Ok(o) if o.status.success() => {
+                    if let Some(row) = StageRow::from_line(&String::from_utf8_lossy(&o.stdout)) {
+                        rows.push(row);
+                    }
+                }
+                Ok(o) => {
+                    eprintln!(
+                        "{}: {}",
+                        path.display(),
+                        String::from_utf8_lossy(&o.stderr).trim()
+                    );
+                    break;
+                }
+                Err(e) => {
+                    eprintln!("{}: cannot run child: {e}", path.display());
+                    break;
+                }
+            }
+        }
+        if let Some(median) = StageRow::median(&rows) {
+            println!("{}", median.to_markdown(&input));
+        }
+    }
+}
