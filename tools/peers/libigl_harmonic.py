@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Time libigl's harmonic disk map (Python bindings) beside `conformap disk` on the same files.
+
+libigl's map is the usual baseline: boundary vertices to the circle by arc length
+(`map_vertices_to_circle`), then one harmonic solve (`harmonic`, k = 1): one factorization,
+no boundary optimization. conformap's time is taken from its JSON report as
+assemble + factor + solve (file reading and writing excluded on both sides).
+
+Usage:
+    python3 -m venv /tmp/iglenv && /tmp/iglenv/bin/pip install libigl numpy scipy
+    cargo build --release -p conformap-cli
+    /tmp/iglenv/bin/python tools/peers/libigl_harmonic.py [--runs 5] [--method cem] MESH.obj ...
+
+Prints a Markdown table: V, F, libigl ms (median), conformap ms (median), ratio, and the
+conformal energy of both maps as judged by `conformap metrics`.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import igl
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CONFORMAP = os.path.join(ROOT, "target", "release", "conformap")
+
+
+def igl_map(v, f):
+    bnd = igl.boundary_loop(f)
+    bnd_uv = igl.map_vertices_to_circle(v, bnd)
+    return igl.harmonic(v, f, bnd, bnd_uv, 1)
+
+
+def write_flat(path, uv, f):
+    with open(path, "w") as out:
+        for x, y in uv:
+            out.write(f"v {float(x)!r} {float(y)!r} 0\n")
+        for a, b, c in f:
+            out.write(f"f {a + 1} {b + 1} {c + 1}\n")
+
+
+def conformap_metrics(mesh, param):
+    out = subprocess.run([CONFORMAP, "metrics", mesh, param, "--json"], capture_output=True, text=True)
+    if out.returncode != 0:
+        return float("nan")
+    return json.loads(out.stdout)["metrics"]["conformal_energy"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--method", default=None, help="conformap disk --method (default: its default)")
+    ap.add_argument("meshes", nargs="+")
+    args = ap.parse_args()
+    if not os.path.exists(CONFORMAP):
+        sys.exit(f"build conformap first: cargo build --release -p conformap-cli ({CONFORMAP})")
+    print(f"median of {args.runs} runs; map computation only (no file I/O); times in ms\n")
+    print("| mesh | V | F | libigl harmonic | conformap | conformap / libigl | E_C libigl | E_C conformap |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    tmp = tempfile.mkdtemp(prefix="conformap-peers-")
+    for mesh in args.meshes:
+        v, f = igl.read_triangle_mesh(mesh)
+        v = np.asarray(v, dtype=np.float64)
+        f = np.asarray(f, dtype=np.int64)
+        times = []
+        uv = None
+        for _ in range(args.runs):
+            t = time.perf_counter()
+            uv = igl_map(v, f)
+            times.append((time.perf_counter() - t) * 1e3)
+        flat = os.path.join(tmp, "igl_flat.obj")
+        write_flat(flat, uv, f)
+        ec_igl = conformap_metrics(mesh, flat)
+        ours = []
+        ec_ours = float("nan")
+        for _ in range(args.runs):
+            rep = os.path.join(tmp, "r.json")
+            cmd = [CONFORMAP, "disk", mesh, "-o", os.path.join(tmp, "o.obj"), "--report", rep]
+            if args.method:
+                cmd += ["--method", args.method]
+            out = subprocess.run(cmd, capture_output=True, text=True)
+            if out.returncode != 0:
+                print(f"conformap failed on {mesh}: {out.stderr.strip()}", file=sys.stderr)
+                break
+            r = json.load(open(rep))
+            t = r["timings_ms"]
+            ours.append(t["assemble"] + t["factor"] + t["solve"])
+            ec_ours = r["metrics"]["conformal_energy"]
+        igl_ms = statistics.median(times)
+        our_ms = statistics.median(ours) if ours else float("nan")
+        name = os.path.basename(mesh)
+        print(f"| {name} | {len(v)} | {len(f)} | {igl_ms:.0f} | {our_ms:.0f} | {our_ms / igl_ms:.2f} | {ec_igl:.5f} | {ec_ours:.5f} |")
+
+
+if __name__ == "__main__":
+    main()
