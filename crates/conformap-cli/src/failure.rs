@@ -57,26 +57,150 @@ impl fmt::Display for Failure {
 
 impl From<conformap_io::IoError> for Failure {
     fn from(e: conformap_io::IoError) -> Self {
-        Self::BadInput(e.to_string(), None)
+        let hint = io_hint(&e);
+        Self::BadInput(e.to_string(), hint.map(str::to_string))
     }
+}
+
+/// What the user can do about a read error (the message says what and where).
+fn io_hint(e: &conformap_io::IoError) -> Option<&'static str> {
+    use conformap_io::{IoError as E, ObjProblem as P};
+    Some(match e {
+        E::InvalidMesh { source, .. } => return mesh_hint(source),
+        E::Read { .. } => "check the path and that the file is readable",
+        E::UnknownFormat { .. } => "name the file .obj, .gltf or .glb (by its actual format)",
+        E::ObjSyntax { problem, .. } => match problem {
+            P::NotUtf8 => "convert the file to UTF-8 text; a binary file is not an OBJ",
+            P::IndexZero { .. } => {
+                "OBJ indices start at 1: the exporter wrote 0-based indices; add 1 to every \
+                 index of the `f` lines"
+            }
+            P::IndexOutOfRange { .. } => {
+                "the face refers to an element the file does not define: the file is \
+                 truncated or its indices are off; re-export it"
+            }
+            _ => "fix or delete that line of the file (the message quotes what is wrong)",
+        },
+        E::Gltf { .. } | E::GltfData { .. } => {
+            "re-export the asset, or check it with the Khronos glTF validator; the message \
+             names the mesh, primitive and accessor"
+        }
+        E::NotPerVertexUv { .. } => {
+            "export the map with one texture coordinate per vertex (no seams), or pass it as \
+             a flat mesh"
+        }
+        E::Backend { .. } => "this is a conformap bug: please report it with the file",
+        _ => return None,
+    })
+}
+
+/// What the user can do about a validation error: `--repair` where a safe, standard repair
+/// exists, the manual fix otherwise.
+pub fn mesh_hint(e: &conformap_mesh::MeshError) -> Option<&'static str> {
+    use conformap_mesh::MeshError as E;
+    Some(match e {
+        E::NoVertices => {
+            "the file holds no vertex: check that it is the mesh you meant (an OBJ needs `v` \
+             lines, a glTF a triangle primitive with POSITION)"
+        }
+        E::NoFaces { .. } => "export the surface with its faces, not a point cloud",
+        E::TooManyVertices { .. } => "split the mesh into parts of fewer than 2^32 vertices",
+        E::NonFiniteCoordinate { .. } => {
+            "fix or delete that vertex in the file (NaN or infinity usually comes from a \
+             failed export); --repair cannot invent a position"
+        }
+        E::IndexOutOfRange { .. } => {
+            "the face refers to a vertex the file does not have: the file is truncated or \
+             its indices are off; re-export it"
+        }
+        E::RepeatedVertexInFace { .. } | E::ZeroAreaFace { .. } => {
+            "delete that face or collapse it in a mesh editor (e.g. Blender: Mesh > Clean Up \
+             > Degenerate Dissolve); --repair leaves degenerate faces alone because removing \
+             them changes the surface"
+        }
+        E::DuplicateFace { .. } => {
+            "rerun with --repair to drop exact duplicate faces (the first copy is kept)"
+        }
+        E::UnreferencedVertex { .. } => {
+            "rerun with --repair to drop unreferenced vertices (--vertex-map FILE then \
+             relates output vertices to input ones)"
+        }
+        E::NonManifoldEdge { .. } => {
+            "delete the extra faces on that edge or split it apart in a mesh editor (Blender: \
+             Select > All by Trait > Non Manifold); no automatic repair is safe"
+        }
+        E::NonManifoldVertex { .. } => {
+            "split the vertex into one per fan of faces (Blender: Mesh > Split > Faces by \
+             Edges) or delete one fan; no automatic repair is safe"
+        }
+        E::InconsistentOrientation { .. } => {
+            "rerun with --repair to re-orient the faces consistently (impossible only on a \
+             non-orientable surface such as a Möbius strip)"
+        }
+        _ => return None,
+    })
 }
 
 impl From<conformap_disk::DiskError> for Failure {
     fn from(e: conformap_disk::DiskError) -> Self {
         use conformap_disk::DiskError as E;
+        use conformap_mesh::Topology as T;
         match e {
             E::WrongTopology { .. } | E::NoInteriorVertex => {
                 let hint = match &e {
-                    E::WrongTopology { .. } => Some(
-                        "`conformap info MESH` shows the topology; a disk map needs one \
-                         boundary loop and genus 0"
+                    E::WrongTopology { found } => match found {
+                        T::SeveralComponents { components } => format!(
+                            "rerun with --repair to keep the largest component (by face \
+                             count) and drop the {} other{}; `conformap info MESH` shows what \
+                             would be dropped",
+                            components - 1,
+                            if *components == 2 { "" } else { "s" }
+                        ),
+                        T::Sphere => "a closed surface has no boundary to put on the circle: \
+                                      cut it open (delete a face or a strip of faces) first"
                             .to_string(),
-                    ),
-                    _ => None,
+                        T::MultiplyConnected { .. } => "fill every hole but the outer \
+                                                        boundary first, or cut the holes \
+                                                        open to the outer boundary"
+                            .to_string(),
+                        _ => "a disk map needs genus 0: cut the surface along its handle \
+                              loops into a disk first; `conformap info MESH` shows the \
+                              topology"
+                            .to_string(),
+                    },
+                    _ => "refine the mesh (subdivide) so that some vertex lies off the \
+                          boundary"
+                        .to_string(),
                 };
-                Self::BadInput(e.to_string(), hint)
+                Self::BadInput(e.to_string(), Some(hint))
             }
             other => Self::Numerical(other.to_string()),
         }
+    }
+}
+
+/// The failure for a mesh [`conformap_mesh::repair`] could not repair, naming the file
+/// place of the element (the repair reports input numbering).
+pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairError) -> Failure {
+    use conformap_mesh::{MeshError, RepairError};
+    match e {
+        RepairError::Invalid(inner) => raw.invalid_mesh(inner).into(),
+        RepairError::NonOrientable { face, other, a, b } => {
+            let at = MeshError::InconsistentOrientation { face, other, a, b };
+            let place = match raw.origin_of(&at) {
+                Some(conformap_io::Origin::Line(l)) => format!(":{l}"),
+                Some(o) => format!(" ({o})"),
+                None => String::new(),
+            };
+            Failure::BadInput(
+                format!("{}{place}: {e}", raw.source.path.display()),
+                Some(
+                    "a non-orientable surface has no conformal map to the disk; cut it open \
+                     along a seam through that edge first"
+                        .to_string(),
+                ),
+            )
+        }
+        other => Failure::input(format!("{}: {other}", raw.source.path.display())),
     }
 }

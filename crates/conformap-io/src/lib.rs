@@ -12,6 +12,8 @@
 //! - [`write_mesh_with_uv`]: the mesh with one texture coordinate per vertex;
 //!   [`write_flat`]: any points and triangles (a flat or spherical map). Output appears
 //!   complete or not at all.
+//! - [`read_raw_mesh`] / [`read_raw_mesh_from_bytes`]: the same parsing without validation,
+//!   for callers that repair first ([`RawMesh::validate`] is the rest of [`read_mesh`]).
 //! - [`IoError`]: the one error type; variants name the file and the line ([`Origin`]) or
 //!   glTF mesh/primitive/accessor.
 //!
@@ -49,10 +51,12 @@ mod error;
 mod gltffile;
 mod loaded;
 mod objfile;
+mod raw;
 
 pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

@@ -5,7 +5,9 @@
 //! [`TriMesh::try_new`] is the single gate every mesh passes: once it returns `Ok`, the
 //! mesh has finite coordinates, in-range indices, no degenerate, duplicate or unreferenced
 //! elements, manifold edges and vertices and a consistent orientation, so downstream crates
-//! need not check again.
+//! need not check again. [`repair`] fixes the defects with a safe, standard fix (duplicate
+//! faces, several components, inconsistent orientation, unreferenced vertices) on request,
+//! before validation, and logs what it changed.
 //!
 //! # Example
 //! ```
@@ -21,10 +23,12 @@
 //! ```
 
 mod error;
+mod repair;
 mod surgery;
 mod trimesh;
 
 pub use error::MeshError;
+pub use repair::{repair, RepairError, RepairLog, RepairOptions, Repaired, DROPPED};
 pub use surgery::{fill_holes, FilledMesh};
 pub use trimesh::{
     bbox_diagonal, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions, WellConditioned,

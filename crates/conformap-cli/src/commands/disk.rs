@@ -1,15 +1,17 @@
 //! `conformap disk MESH -o OUT ...`: conformal map onto the unit disk.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use conformap_disk::{cem, harmonic_arc_length, CemOptions, DiskProblem, CEM_MAX_ITER, CEM_TOL};
+use conformap_io::{RawMesh, SourceInfo};
+use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::commands::write_json;
-use crate::failure::Failure;
+use crate::failure::{repair_failure, Failure};
 use crate::report::{ms_since, InputInfo, StageTimings};
 
 /// The disk-map method.
@@ -56,6 +58,83 @@ pub struct DiskArgs {
     /// Exit with code 3 (writing nothing) if the solver did not converge.
     #[arg(long)]
     pub strict: bool,
+    /// Repair the input first: drop duplicate faces, keep the largest component, orient the
+    /// faces consistently, drop unreferenced vertices. Outputs then hold the repaired mesh
+    /// (vt index k belongs to repaired vertex k); the report lists the repairs.
+    #[arg(long)]
+    pub repair: bool,
+    /// With --repair: write the vertex map here, one line per output vertex holding its
+    /// 0-based input vertex.
+    #[arg(long, requires = "repair")]
+    pub vertex_map: Option<PathBuf>,
+    /// Refuse (exit 1, nothing computed) if the estimated peak memory exceeds SIZE (bytes,
+    /// or with K/M/G/T, e.g. 4G). Default: the memory available (Linux MemAvailable, within
+    /// the cgroup limit); no check where that is unknown.
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_memory: Option<u64>,
+}
+
+/// A mesh to map: as read, or repaired.
+pub struct Input {
+    /// The validated mesh.
+    pub mesh: TriMesh,
+    /// Where it came from.
+    pub source: SourceInfo,
+    /// What `--repair` changed (`None` without `--repair`).
+    pub repairs: Option<RepairLog>,
+}
+
+/// Reads `path`; with `repair`, reads it raw, applies every repair of
+/// [`conformap_mesh::repair`] and validates the result. Errors name input elements and
+/// file places either way.
+pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
+    if !repair {
+        let loaded = conformap_io::read_mesh(path)?;
+        return Ok(Input {
+            mesh: loaded.mesh,
+            source: loaded.source,
+            repairs: None,
+        });
+    }
+    repair_input(conformap_io::read_raw_mesh(path)?)
+}
+
+/// Applies every repair of [`conformap_mesh::repair`] to `raw` and validates the result;
+/// errors name input elements and their file places.
+pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
+    let fixed = conformap_mesh::repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT)
+        .map_err(|e| repair_failure(&raw, e))?;
+    raw.positions = Vec::new();
+    raw.faces = Vec::new();
+    let log = fixed.log;
+    let mesh = TriMesh::try_new(fixed.positions, fixed.faces)
+        .map_err(|e| Failure::from(raw.invalid_mesh(log.to_input_error(e))))?;
+    Ok(Input {
+        mesh,
+        source: raw.source,
+        repairs: Some(log),
+    })
+}
+
+/// The `repairs` object of a report: what changed, and the sizes of the maps back to the
+/// input.
+pub fn repairs_json(log: &RepairLog) -> serde_json::Value {
+    json!({
+        "applied": log.actions(),
+        "input_vertices": log.input_vertices,
+        "input_faces": log.input_faces,
+        "duplicate_faces": log.duplicate_faces,
+        "components": log.components,
+        "component_faces_dropped": log.component_faces_dropped,
+        "component_vertices_dropped": log.component_vertices_dropped,
+        "flipped_faces": log.flipped_faces,
+        "unreferenced_vertices": log.unreferenced_vertices,
+        "vertex_map": {
+            "repaired_to_input": log.vertex_to_input.len(),
+            "input_to_repaired": log.input_to_vertex.len(),
+        },
+        "face_map": { "repaired_to_input": log.face_to_input.len() },
+    })
 }
 
 /// Runs `conformap disk`.
@@ -71,10 +150,13 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
     for out in std::iter::once(&args.output).chain(args.flat.iter()) {
         conformap_io::Format::from_path(out).map_err(|e| Failure::Usage(e.to_string()))?;
     }
+    let in_mesh_file = |f: Failure| f.in_file(&args.mesh);
+    let memory = MemoryCheck::before_reading(&args.mesh, args.max_memory).map_err(in_mesh_file)?;
     let t = Instant::now();
-    let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let mesh = &loaded.mesh;
+    let input = read_input(&args.mesh, args.repair)?;
+    let mesh = &input.mesh;
     let read_ms = ms_since(t);
+    let memory = memory.before_solving(mesh).map_err(in_mesh_file)?;
 
     let in_file = |e: conformap_disk::DiskError| Failure::from(e).in_file(&args.mesh);
     let mut problem = DiskProblem::new(mesh).map_err(in_file)?;
@@ -105,10 +187,16 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         .iter()
         .map(|z| [(z.re + 1.0) / 2.0, (z.im + 1.0) / 2.0])
         .collect();
-    conformap_io::write_mesh_with_uv(&args.output, mesh, &uv, Some(&loaded.source))?;
+    // a repaired mesh no longer has the file's vertex layout
+    let unchanged = input.repairs.as_ref().is_none_or(|log| !log.changed());
+    let source = unchanged.then_some(&input.source);
+    conformap_io::write_mesh_with_uv(&args.output, mesh, &uv, source)?;
     if let Some(flat) = &args.flat {
         let pts: Vec<[f64; 3]> = result.map.iter().map(|z| [z.re, z.im, 0.0]).collect();
         conformap_io::write_flat(flat, &pts, mesh.faces())?;
+    }
+    if let (Some(path), Some(log)) = (&args.vertex_map, &input.repairs) {
+        write_vertex_map(path, log)?;
     }
     let write_ms = ms_since(t);
 
@@ -122,17 +210,28 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         write: write_ms,
         total: ms_since(t_all),
     };
-    let report = json!({
+    let mut report = json!({
         "conformap_version": env!("CARGO_PKG_VERSION"),
         "command": "disk",
         "method": args.method.name(),
         "input": InputInfo::new(&args.mesh, mesh),
         "solver": s,
         "metrics": metrics,
+        "memory": memory.to_json(),
         "timings_ms": timings,
     });
+    if let Some(log) = &input.repairs {
+        report["repairs"] = repairs_json(log);
+    }
     if let Some(path) = &args.report {
         write_json(path, &report)?;
+    }
+    if let Some(log) = input.repairs.as_ref().filter(|l| l.changed()) {
+        eprintln!(
+            "{}: repaired: {}",
+            args.mesh.display(),
+            log.actions().join("; ")
+        );
     }
     eprintln!(
         "{}: {} vertices, {} faces; {} in {} iterations{}; E_C = {:.6e}, mean angle distortion \
@@ -149,4 +248,221 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         timings.total
     );
     Ok(())
+}
+
+/// Writes the repaired → input vertex map, one 0-based input vertex per line.
+fn write_vertex_map(path: &Path, log: &RepairLog) -> Result<(), Failure> {
+    let mut text = String::with_capacity(8 * log.vertex_to_input.len());
+    for v in &log.vertex_to_input {
+        text.push_str(&v.to_string());
+        text.push('\n');
+    }
+    std::fs::write(path, text)
+        .map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
+}
+
+/// The memory check of a run: the estimates, the limit they were held against, and (at
+/// the end of the run) the measured peak.
+#[derive(Debug, Clone, Copy)]
+pub struct MemoryCheck {
+    /// [`READ_BYTES_PER_FILE_BYTE`] × the file size.
+    pub read_estimate: u64,
+    /// [`estimate_peak_bytes`] of the mesh read.
+    pub estimate: u64,
+    /// The limit, and where it came from; `None` when unknown (no check).
+    pub limit: Option<(u64, &'static str)>,
+}
+
+impl MemoryCheck {
+    /// Checks that reading `path` fits in `max_memory` or (without it) the memory
+    /// available now, before anything is read.
+    pub fn before_reading(path: &Path, max_memory: Option<u64>) -> Result<Self, Failure> {
+        let limit = match max_memory {
+            Some(m) => Some((m, "--max-memory")),
+            None => available_memory(),
+        };
+        let size = std::fs::metadata(path).map_or(0, |m| m.len());
+        let check = Self {
+            read_estimate: READ_BYTES_PER_FILE_BYTE.saturating_mul(size),
+            estimate: 0,
+            limit,
+        };
+        check.refuse_above(
+            check.read_estimate,
+            &format!("reading this {} file", human_bytes(size)),
+        )?;
+        Ok(check)
+    }
+
+    /// Estimates the peak memory of `disk` on `mesh` and refuses the run, before anything is
+    /// assembled or factored, if it is above the limit.
+    pub fn before_solving(mut self, mesh: &TriMesh) -> Result<Self, Failure> {
+        let boundary = mesh
+            .boundary_loops()
+            .iter()
+            .map(Vec::len)
+            .max()
+            .unwrap_or(0);
+        // neither CEM nor the harmonic map forms a dense boundary block
+        self.estimate = estimate_peak_bytes(mesh.num_vertices(), mesh.num_edges(), boundary, false)
+            .max(self.read_estimate);
+        let what = format!(
+            "a disk map of this mesh ({} vertices, {} faces)",
+            mesh.num_vertices(),
+            mesh.num_faces()
+        );
+        self.refuse_above(self.estimate, &what)?;
+        Ok(self)
+    }
+
+    fn refuse_above(&self, estimate: u64, what: &str) -> Result<(), Failure> {
+        match self.limit {
+            Some((limit, from)) if estimate > limit => Err(Failure::BadInput(
+                format!(
+                    "{what} needs an estimated {} at peak, more than the {} allowed \
+                     ({from}); nothing was computed",
+                    human_bytes(estimate),
+                    human_bytes(limit)
+                ),
+                Some(
+                    "free memory or use a larger machine, or decimate the mesh; if the \
+                     estimate is too cautious, --max-memory SIZE raises the limit"
+                        .to_string(),
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The `memory` object of a report. `limit_bytes` and `peak_rss_bytes` are measurements
+    /// of the machine and the run (like timings), not of the input.
+    fn to_json(self) -> serde_json::Value {
+        json!({
+            "estimated_peak_bytes": self.estimate,
+            "limit_bytes": self.limit.map(|l| l.0),
+            "limit_source": self.limit.map(|l| l.1),
+            "peak_rss_bytes": peak_rss_bytes(),
+        })
+    }
+}
+
+/// `1.23 GiB`, `45.6 MiB`, `789 KiB`.
+fn human_bytes(b: u64) -> String {
+    let b = b as f64;
+    if b >= 1073741824.0 {
+        format!("{:.2} GiB", b / 1073741824.0)
+    } else if b >= 1048576.0 {
+        format!("{:.1} MiB", b / 1048576.0)
+    } else {
+        format!("{:.0} KiB", b / 1024.0)
+    }
+}
+
+/// Peak memory of reading a file per byte of it (the bytes, the text `tobj` parses, its
+/// and our index arrays). Measured: 590 MiB for the 84 MB OBJ of a 2M-face grid (7.4×).
+pub const READ_BYTES_PER_FILE_BYTE: u64 = 8;
+/// Fixed cost of the process (binary, allocator, threads). Measured: 5.4 MiB in all for
+/// woody.obj (694 vertices).
+const BASE_BYTES: f64 = 8.0 * 1048576.0;
+/// Bytes per vertex for everything but the factor and the Laplacian's entries: mesh,
+/// half-edges, assembly triplets, intrinsic Delaunay triangulation, blocks, maps, metrics.
+const BYTES_PER_VERTEX: f64 = 1100.0;
+/// Bytes per `n log₂ n` (n = interior vertices) for the Cholesky factor of `L_II` under AMD
+/// (measured nnz(L) = 3.4 n log₂ n on hand.obj, 4.1 on igea_open.obj; 8-byte values plus
+/// structure and workspace) and what grows with it.
+const FACTOR_BYTES_PER_NLOGN: f64 = 80.0;
+/// At most this much for a dense boundary-sized block (CCEM's Schur complement).
+const DENSE_MAX_BYTES: f64 = 512.0 * 1048576.0;
+
+/// Estimated peak resident memory (bytes) of `disk` on a mesh with `vertices` vertices,
+/// `edges` edges and a boundary loop of `boundary` vertices: a linear part (mesh, Laplacian
+/// with `vertices + 2 edges` entries of 16 bytes, intrinsic triangulation, maps) plus the
+/// Cholesky factor of the interior block, whose fill under AMD grows like `n log n` on
+/// surface meshes, plus, for a method that forms one (`dense_boundary`), a dense
+/// boundary-sized block (`8 n_B²` bytes, at most 512 MiB).
+///
+/// Calibrated against the measured peak (VmHWM): between 1.3× and 1.8× of it on the real
+/// meshes of `../shared/meshes` (694 to 130k vertices) and 1.4× on a generated
+/// 2M-face grid (estimate 2.63 GiB, peak 1.92 GiB); `memory_estimate_bounds_the_measured_peak`
+/// in `tests/robustness.rs` re-measures it.
+pub fn estimate_peak_bytes(
+    vertices: usize,
+    edges: usize,
+    boundary: usize,
+    dense_boundary: bool,
+) -> u64 {
+    let n = vertices as f64;
+    let interior = vertices.saturating_sub(boundary).max(2) as f64;
+    let laplacian_nnz = n + 2.0 * edges as f64;
+    let linear = BYTES_PER_VERTEX * n + 16.0 * laplacian_nnz;
+    let factor = FACTOR_BYTES_PER_NLOGN * interior * interior.log2();
+    let dense = if dense_boundary {
+        (8.0 * (boundary as f64).powi(2)).min(DENSE_MAX_BYTES)
+    } else {
+        0.0
+    };
+    (BASE_BYTES + linear + factor + dense) as u64
+}
+
+/// The memory this process may still use: `MemAvailable` of `/proc/meminfo`, lowered to
+/// what the cgroup (v2) limit leaves, if there is one. `None` where unknown.
+fn available_memory() -> Option<(u64, &'static str)> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let kib = meminfo
+        .lines()
+        .find_map(|l| l.strip_prefix("MemAvailable:"))?
+        .split_whitespace()
+        .next()?
+        .parse::<u64>()
+        .ok()?;
+    let avail = kib.saturating_mul(1024);
+    let read = |p: &str| -> Option<u64> { std::fs::read_to_string(p).ok()?.trim().parse().ok() };
+    match (
+        read("/sys/fs/cgroup/memory.max"),
+        read("/sys/fs/cgroup/memory.current"),
+    ) {
+        (Some(max), Some(current)) if max.saturating_sub(current) < avail => {
+            Some((max.saturating_sub(current), "cgroup memory.max"))
+        }
+        _ => Some((avail, "MemAvailable")),
+    }
+}
+
+/// Peak resident set size of this process (Linux `VmHWM`), `None` where unknown.
+fn peak_rss_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kib = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))?
+        .split_whitespace()
+        .next()?
+        .parse::<u64>()
+        .ok()?;
+    Some(kib * 1024)
+}
+
+/// Parses `4G`, `512M`, `1.5GiB`, `100000` (bytes; K, M, G, T are powers of 1024).
+pub fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let lower = t.to_ascii_lowercase();
+    let body = lower
+        .strip_suffix("ib")
+        .or_else(|| lower.strip_suffix('b'))
+        .unwrap_or(&lower);
+    let (num, shift) = match body.chars().last() {
+        Some('k') => (&body[..body.len() - 1], 10),
+        Some('m') => (&body[..body.len() - 1], 20),
+        Some('g') => (&body[..body.len() - 1], 30),
+        Some('t') => (&body[..body.len() - 1], 40),
+        _ => (body, 0),
+    };
+    let value: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{t}` is not a size (e.g. 4G, 512M, 1000000)"))?;
+    let bytes = value * 2f64.powi(shift);
+    if !(bytes.is_finite() && bytes >= 1.0) || bytes > u64::MAX as f64 {
+        return Err(format!("`{t}` is not a positive size"));
+    }
+    Ok(bytes as u64)
 }

@@ -3,12 +3,14 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use conformap_mesh::TriMesh;
+use conformap_io::RawMesh;
+use conformap_mesh::{repair, RepairOptions, TriMesh};
 use conformap_operators::{corner_angles, cotan_laplacian, surface_area};
 use serde_json::json;
 
+use crate::commands::disk::{repair_input, repairs_json};
 use crate::commands::say;
-use crate::failure::Failure;
+use crate::failure::{repair_failure, Failure};
 
 /// Arguments of `conformap info`.
 #[derive(Debug, Args)]
@@ -18,12 +20,37 @@ pub struct InfoArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Describe the mesh as `disk --repair` would map it (after the repairs it needs).
+    #[arg(long)]
+    pub repair: bool,
 }
 
-/// Runs `conformap info`.
+/// Runs `conformap info`. Without `--repair`, an invalid mesh is an error whose hint says
+/// what `--repair` would do about it; a valid one lists the repairs that would still apply
+/// (`repairs_available`, e.g. keeping the largest of several components).
 pub fn run(args: &InfoArgs) -> Result<(), Failure> {
-    let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let value = describe(&loaded.mesh, &args.mesh);
+    let raw = conformap_io::read_raw_mesh(&args.mesh)?;
+    let value = if args.repair {
+        let input = repair_input(raw)?;
+        let mut value = describe(&input.mesh, &args.mesh);
+        if let Some(log) = &input.repairs {
+            value["repairs"] = repairs_json(log);
+        }
+        value
+    } else {
+        let preview = repair_preview(&raw);
+        let loaded = raw.validate().map_err(|e| {
+            let f = Failure::from(e);
+            let hint = match f.hint() {
+                Some(h) => format!("{h}\nhint: {preview}"),
+                None => preview.clone(),
+            };
+            Failure::BadInput(f.to_string(), Some(hint))
+        })?;
+        let mut value = describe(&loaded.mesh, &args.mesh);
+        value["repairs_available"] = json!(available_repairs(&loaded.mesh));
+        value
+    };
     if args.json {
         say(&serde_json::to_string_pretty(&value).unwrap_or_default());
     } else {
@@ -81,6 +108,41 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
     })
 }
 
+/// One line saying what `--repair` would do to `raw` and whether the result would be valid.
+fn repair_preview(raw: &RawMesh) -> String {
+    match repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT) {
+        Err(e) => format!("--repair cannot fix it: {}", repair_failure(raw, e)),
+        Ok(r) => {
+            let actions = r.log.actions();
+            let what = if actions.is_empty() {
+                "nothing to repair".to_string()
+            } else {
+                actions.join("; ")
+            };
+            match TriMesh::try_new(r.positions, r.faces) {
+                Ok(m) => format!(
+                    "with --repair: {what}; the result is valid, {} (`conformap info \
+                     --repair` describes it)",
+                    m.topology()
+                ),
+                Err(e) => format!(
+                    "with --repair: {what}; the result is still invalid: {}",
+                    raw.invalid_mesh(r.log.to_input_error(e))
+                ),
+            }
+        }
+    }
+}
+
+/// The repairs `--repair` would still apply to a valid mesh (only keeping the largest
+/// component can: a valid mesh has no duplicate, flipped or unreferenced element).
+fn available_repairs(mesh: &TriMesh) -> Vec<String> {
+    match repair(mesh.positions(), mesh.faces(), &RepairOptions::DEFAULT) {
+        Ok(r) => r.log.actions(),
+        Err(e) => vec![format!("cannot repair: {e}")],
+    }
+}
+
 fn print_text(v: &serde_json::Value) {
     let g = |k: &str| v.get(k).cloned().unwrap_or(serde_json::Value::Null);
     say(&format!(
@@ -124,4 +186,35 @@ fn print_text(v: &serde_json::Value) {
         "CEM well-conditioned (Definition 1): {}",
         v["well_conditioned"]["holds"]
     ));
+    let list = |key: &str| -> Vec<String> {
+        v[key]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|s| s.as_str().map(str::to_string))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let available = list("repairs_available");
+    if !available.is_empty() {
+        say(&format!("with --repair: {}", available.join("; ")));
+    }
+    if v.get("repairs").is_some() {
+        let applied = v["repairs"]["applied"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|s| s.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })
+            .unwrap_or_default();
+        let applied = if applied.is_empty() {
+            "nothing".to_string()
+        } else {
+            applied
+        };
+        say(&format!("repaired:    {applied}"));
+    }
 }

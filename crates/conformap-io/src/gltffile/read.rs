@@ -7,9 +7,10 @@ use gltf::mesh::Mode;
 use gltf::{Gltf, Semantic};
 
 use super::buffers::{check_container, load_buffers};
-use super::weld::{weld_and_validate, PrimRange, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
+use super::weld::{weld, PrimRange, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
 use crate::error::IoError;
 use crate::loaded::{Format, LoadedMesh};
+use crate::raw::RawMesh;
 
 type Matrix = [[f64; 4]; 4];
 
@@ -19,14 +20,24 @@ const IDENTITY: Matrix = [
     [0.0, 0.0, 1.0, 0.0],
     [0.0, 0.0, 0.0, 1.0],
 ];
-/// Reads glTF or GLB bytes; external buffers are resolved against `base` (none: only
-/// embedded data is allowed). `path` names the file in errors.
+/// Reads and validates glTF or GLB bytes; external buffers are resolved against `base`
+/// (none: only embedded data is allowed). `path` names the file in errors.
 pub(crate) fn read_gltf(
     bytes: &[u8],
     path: &Path,
     base: Option<&Path>,
     format: Format,
 ) -> Result<LoadedMesh, IoError> {
+    read_gltf_raw(bytes, path, base, format)?.validate()
+}
+
+/// [`read_gltf`] without validating the welded mesh.
+pub(crate) fn read_gltf_raw(
+    bytes: &[u8],
+    path: &Path,
+    base: Option<&Path>,
+    format: Format,
+) -> Result<RawMesh, IoError> {
     check_container(bytes, path)?;
     let gltf_err = |source| IoError::Gltf {
         path: path.to_path_buf(),
@@ -36,7 +47,7 @@ pub(crate) fn read_gltf(
     validate(&document).map_err(gltf_err)?;
     let buffers = load_buffers(&document, base, blob, path)?;
     let soup = collect(&document, &buffers, path)?;
-    weld_and_validate(soup, path, format)
+    Ok(weld(soup, path, format))
 }
 
 /// The `gltf` crate's validation (every index in range, required fields present), except

@@ -3,12 +3,12 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use conformap_mesh::TriMesh;
-
-use crate::error::{mesh_error_element, Element, IoError, Origin, UvProblem};
-use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+use crate::error::{Origin, UvProblem};
+use crate::loaded::{Format, SourceInfo, NO_VERTEX};
+use crate::raw::{GltfOrigins, RawMesh};
 
 /// One primitive's share of the concatenated file vertices and faces.
+#[derive(Debug, Clone)]
 pub(crate) struct PrimRange {
     pub(crate) mesh: usize,
     pub(crate) primitive: usize,
@@ -36,38 +36,38 @@ pub(crate) struct Soup {
     pub(crate) notes: Vec<String>,
 }
 
-impl Soup {
-    fn prim_of(&self, pick: impl Fn(&PrimRange) -> usize, k: usize) -> Option<&PrimRange> {
-        let i = self.prims.partition_point(|p| pick(p) <= k);
-        self.prims.get(i.checked_sub(1)?)
-    }
-
-    fn vertex_origin(&self, v: usize) -> Option<Origin> {
-        let p = self.prim_of(|p| p.vertex_start, v)?;
-        Some(Origin::GltfVertex {
-            mesh: p.mesh,
-            primitive: p.primitive,
-            vertex: v - p.vertex_start,
-        })
-    }
-
-    fn face_origin(&self, f: usize) -> Option<Origin> {
-        let p = self.prim_of(|p| p.face_start, f)?;
-        Some(Origin::GltfTriangle {
-            mesh: p.mesh,
-            primitive: p.primitive,
-            triangle: f - p.face_start,
-        })
-    }
+fn prim_of(
+    prims: &[PrimRange],
+    pick: impl Fn(&PrimRange) -> usize,
+    k: usize,
+) -> Option<&PrimRange> {
+    let i = prims.partition_point(|p| pick(p) <= k);
+    prims.get(i.checked_sub(1)?)
 }
 
-/// Welds bit-identical positions of referenced file vertices (first occurrence wins),
-/// validates, and checks the texture coordinates.
-pub(crate) fn weld_and_validate(
-    mut soup: Soup,
-    path: &Path,
-    format: Format,
-) -> Result<LoadedMesh, IoError> {
+/// The primitive vertex of file vertex `v`.
+pub(crate) fn vertex_origin(prims: &[PrimRange], v: usize) -> Option<Origin> {
+    let p = prim_of(prims, |p| p.vertex_start, v)?;
+    Some(Origin::GltfVertex {
+        mesh: p.mesh,
+        primitive: p.primitive,
+        vertex: v - p.vertex_start,
+    })
+}
+
+/// The primitive triangle of face `f`.
+pub(crate) fn face_origin(prims: &[PrimRange], f: usize) -> Option<Origin> {
+    let p = prim_of(prims, |p| p.face_start, f)?;
+    Some(Origin::GltfTriangle {
+        mesh: p.mesh,
+        primitive: p.primitive,
+        triangle: f - p.face_start,
+    })
+}
+
+/// Welds bit-identical positions of referenced file vertices (first occurrence wins) and
+/// checks the texture coordinates; validation is left to [`RawMesh::validate`].
+pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
     let nfile = soup.positions.len();
     let mut referenced = vec![false; nfile];
     for &i in soup.faces.iter().flatten() {
@@ -109,33 +109,18 @@ pub(crate) fn weld_and_validate(
             first_file.len()
         ));
     }
-    let mesh = TriMesh::try_new(positions, faces).map_err(|e| {
-        let origin = match mesh_error_element(&e) {
-            Some(Element::Vertex(v)) => first_file.get(v).and_then(|&i| soup.vertex_origin(i)),
-            Some(Element::Face(f)) => soup.face_origin(f),
-            None => None,
-        };
-        IoError::InvalidMesh {
-            path: path.to_path_buf(),
-            origin,
-            source: e,
-        }
-    })?;
-    let (uv, uv_problem) = match weld_uv(&soup, &map, &referenced, first_file.len()) {
-        Ok(uv) => (Some(uv), None),
-        Err(p) => (None, Some(p)),
-    };
+    let uv = weld_uv(&soup, &map, &referenced, first_file.len())
+        .map(|uv| uv.into_iter().map(Some).collect());
     let mut source = SourceInfo::new(path.to_path_buf(), format);
     source.file_vertex_count = nfile;
     source.weld_map = Some(map);
     source.file_faces = Some(soup.faces);
     source.notes = notes;
-    Ok(LoadedMesh {
-        mesh,
-        uv,
-        uv_problem,
-        source,
-    })
+    let origins = GltfOrigins {
+        prims: soup.prims,
+        first_file,
+    };
+    RawMesh::new(positions, faces, uv, source, Some(origins))
 }
 
 /// One texture coordinate per welded vertex, or the first seam / missing one.
@@ -154,7 +139,7 @@ fn weld_uv(
     }
     // every soup vertex lies in some primitive's range; the fallback is never used
     let origin = |i: usize| {
-        soup.vertex_origin(i).unwrap_or(Origin::GltfVertex {
+        vertex_origin(&soup.prims, i).unwrap_or(Origin::GltfVertex {
             mesh: 0,
             primitive: 0,
             vertex: i,

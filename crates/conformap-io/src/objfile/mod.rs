@@ -4,5 +4,5 @@ mod read;
 mod scan;
 mod write;
 
-pub(crate) use read::read_obj;
+pub(crate) use read::{read_obj, read_obj_raw};
 pub(crate) use write::{encode_obj, encode_obj_with_uv};

@@ -2,14 +2,21 @@
 
 use std::path::Path;
 
-use conformap_mesh::{MeshError, TriMesh};
+use conformap_mesh::MeshError;
 
 use super::scan::{scan, Scan, NO_UV};
-use crate::error::{mesh_error_element, Element, IoError, ObjProblem, Origin, UvProblem};
+use crate::error::{IoError, ObjProblem, Origin, UvProblem};
 use crate::loaded::{Format, LoadedMesh, SourceInfo};
+use crate::raw::RawMesh;
 
-/// Reads an OBJ file's bytes. `path` only names the file in errors.
+/// Reads and validates an OBJ file's bytes. `path` only names the file in errors.
 pub(crate) fn read_obj(bytes: &[u8], path: &Path) -> Result<LoadedMesh, IoError> {
+    read_obj_raw(bytes, path)?.validate()
+}
+
+/// Reads an OBJ file's bytes without validating the mesh. `path` only names the file in
+/// errors.
+pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError> {
     let syntax = |(line, problem)| IoError::ObjSyntax {
         path: path.to_path_buf(),
         line,
@@ -66,29 +73,12 @@ pub(crate) fn read_obj(bytes: &[u8], path: &Path) -> Result<LoadedMesh, IoError>
     };
     let positions = positions_in_file_order(&model.mesh, &scanned).map_err(backend)?;
     let uv = per_vertex_uv(&model.mesh, &scanned, positions.len()).map_err(backend)?;
-    let mesh = TriMesh::try_new(positions, scanned.faces.clone()).map_err(|e| {
-        let line = match mesh_error_element(&e) {
-            Some(Element::Vertex(v)) => scanned.vertex_lines.get(v).copied(),
-            Some(Element::Face(f)) => scanned.face_lines.get(f).copied(),
-            None => None,
-        };
-        invalid(e, line.map(Origin::Line))
-    })?;
     let mut source = SourceInfo::new(path.to_path_buf(), Format::Obj);
     source.file_vertex_count = scanned.vertex_lines.len();
-    let (uv, uv_problem) = match uv {
-        Ok(uv) => (Some(uv), None),
-        Err(problem) => (None, Some(problem)),
-    };
     source.notes = scanned.notes;
     source.vertex_lines = Some(scanned.vertex_lines);
     source.face_lines = Some(scanned.face_lines);
-    Ok(LoadedMesh {
-        mesh,
-        uv,
-        uv_problem,
-        source,
-    })
+    Ok(RawMesh::new(positions, scanned.faces, uv, source, None))
 }
 
 /// Checks that `tobj` numbered the vertices in file order (thanks to the synthetic first
@@ -120,13 +110,16 @@ fn positions_in_file_order(mesh: &tobj::Mesh, s: &Scan) -> Result<Vec<[f64; 3]>,
         .collect())
 }
 
+/// A texture coordinate per vertex (`None` for a vertex no face uses).
+type VertexUv = Vec<Option<[f64; 2]>>;
+
 /// One texture coordinate per vertex, or why there is not. The outer error is a backend
 /// inconsistency.
 fn per_vertex_uv(
     mesh: &tobj::Mesh,
     s: &Scan,
     n: usize,
-) -> Result<Result<Vec<[f64; 2]>, UvProblem>, String> {
+) -> Result<Result<VertexUv, UvProblem>, String> {
     let corners = s.face_uv.iter().flatten();
     if corners.clone().all(|&t| t == NO_UV) {
         return Ok(Err(UvProblem::Absent));
@@ -168,11 +161,11 @@ fn per_vertex_uv(
             None => return Err("face vertex past the positions".to_owned()),
         }
     }
-    // a valid mesh references every vertex, so every slot is filled
-    Ok(first
+    // a vertex no face uses has no texture coordinate
+    Ok(Ok(first
         .into_iter()
-        .map(|slot| slot.map(|(_, uv, _)| uv).ok_or(UvProblem::Absent))
-        .collect())
+        .map(|slot| slot.map(|(_, uv, _)| uv))
+        .collect()))
 }
 
 #[cfg(test)]

@@ -1,0 +1,194 @@
+//! Reading without validating: the triangles a file holds, for callers that repair a mesh
+//! before validation (the CLI's `--repair`). [`read_mesh`](crate::read_mesh) is this
+//! followed by [`RawMesh::validate`].
+
+use std::path::Path;
+
+use conformap_mesh::{MeshError, TriMesh};
+
+use crate::error::{mesh_error_element, Element, IoError, Origin, UvProblem};
+use crate::gltffile::{face_origin, read_gltf_raw, vertex_origin, PrimRange};
+use crate::loaded::{Format, LoadedMesh, SourceInfo};
+use crate::objfile::read_obj_raw;
+
+/// The name errors use for data that did not come from a file.
+const MEMORY: &str = "<memory>";
+
+/// A mesh as the file gives it, parsed but not validated: positions and triangles may have
+/// any defect [`TriMesh::try_new`] rejects except an empty file (an error already).
+///
+/// Numbering is that of [`LoadedMesh`]: for OBJ, vertex `k` is the file's `k`-th `v` line
+/// and face `k` the `k`-th triangle; for glTF, vertices are welded (bit-identical positions
+/// merged, vertices no triangle uses left out; see [`SourceInfo::weld_map`]).
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct RawMesh {
+    /// Vertex positions (possibly non-finite).
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles (indices are in range; faces may be degenerate, duplicated, non-manifold or
+    /// inconsistently oriented).
+    pub faces: Vec<[u32; 3]>,
+    /// The texture coordinate of each vertex (`None` for a vertex no face uses), when the
+    /// file gives one per vertex; `None` otherwise (see [`Self::uv_problem`]).
+    pub uv: Option<Vec<Option<[f64; 2]>>>,
+    /// Why [`Self::uv`] is `None`; `None` when it is `Some`.
+    pub uv_problem: Option<UvProblem>,
+    /// Where the mesh came from and how its elements map to the file.
+    pub source: SourceInfo,
+    /// glTF: the primitive ranges and the file vertex of each welded vertex, to name an
+    /// element's origin. Empty for OBJ (lines are in `source`).
+    origins: GltfOrigins,
+}
+
+/// What a glTF read keeps to name the origin of a welded vertex or a face.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct GltfOrigins {
+    pub(crate) prims: Vec<PrimRange>,
+    /// For each welded vertex, its first file vertex.
+    pub(crate) first_file: Vec<usize>,
+}
+
+impl RawMesh {
+    pub(crate) fn new(
+        positions: Vec<[f64; 3]>,
+        faces: Vec<[u32; 3]>,
+        uv: Result<Vec<Option<[f64; 2]>>, UvProblem>,
+        source: SourceInfo,
+        origins: Option<GltfOrigins>,
+    ) -> Self {
+        let (uv, uv_problem) = match uv {
+            Ok(uv) => (Some(uv), None),
+            Err(p) => (None, Some(p)),
+        };
+        Self {
+            positions,
+            faces,
+            uv,
+            uv_problem,
+            source,
+            origins: origins.unwrap_or_default(),
+        }
+    }
+
+    /// The file place of the vertex or face `error` names (its numbering must be this
+    /// mesh's): an OBJ line, a glTF primitive vertex or triangle; `None` for whole-mesh
+    /// errors or an index past the mesh.
+    pub fn origin_of(&self, error: &MeshError) -> Option<Origin> {
+        origin_in(&self.source, &self.origins, error)
+    }
+
+    /// The [`IoError::InvalidMesh`] for a validation error about this mesh (this mesh's
+    /// numbering), with the file place of the element it names.
+    pub fn invalid_mesh(&self, error: MeshError) -> IoError {
+        IoError::InvalidMesh {
+            path: self.source.path.clone(),
+            origin: self.origin_of(&error),
+            source: error,
+        }
+    }
+
+    /// Validates the mesh ([`TriMesh::try_new`]), as [`read_mesh`](crate::read_mesh) does.
+    ///
+    /// # Errors
+    /// [`IoError::InvalidMesh`] naming the file place of the offending element.
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_io::{read_raw_mesh_from_bytes, Format, IoError, Origin};
+    /// // the second face repeats the first: the raw read succeeds, validation does not
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 3 1\n";
+    /// let raw = read_raw_mesh_from_bytes(obj, Format::Obj)?;
+    /// assert_eq!(raw.faces.len(), 2);
+    /// let err = raw.validate().unwrap_err();
+    /// assert!(matches!(err, IoError::InvalidMesh { origin: Some(Origin::Line(5)), .. }));
+    /// # Ok::<(), IoError>(())
+    /// ```
+    pub fn validate(self) -> Result<LoadedMesh, IoError> {
+        let Self {
+            positions,
+            faces,
+            uv,
+            uv_problem,
+            source,
+            origins,
+        } = self;
+        let mesh = TriMesh::try_new(positions, faces).map_err(|e| IoError::InvalidMesh {
+            path: source.path.clone(),
+            origin: origin_in(&source, &origins, &e),
+            source: e,
+        })?;
+        // a valid mesh references every vertex, so a per-vertex uv has every slot filled
+        let uv = uv.map(|uv| uv.into_iter().collect::<Option<Vec<_>>>());
+        let (uv, uv_problem) = match (uv, uv_problem) {
+            (Some(Some(uv)), _) => (Some(uv), None),
+            (Some(None), _) => (None, Some(UvProblem::Absent)),
+            (None, problem) => (None, problem),
+        };
+        Ok(LoadedMesh {
+            mesh,
+            uv,
+            uv_problem,
+            source,
+        })
+    }
+}
+
+/// See [`RawMesh::origin_of`].
+fn origin_in(src: &SourceInfo, origins: &GltfOrigins, error: &MeshError) -> Option<Origin> {
+    match (
+        mesh_error_element(error)?,
+        &src.vertex_lines,
+        &src.face_lines,
+    ) {
+        (Element::Vertex(v), Some(lines), _) => lines.get(v).map(|&l| Origin::Line(l)),
+        (Element::Face(f), _, Some(lines)) => lines.get(f).map(|&l| Origin::Line(l)),
+        (Element::Vertex(v), None, _) => {
+            let file = *origins.first_file.get(v)?;
+            vertex_origin(&origins.prims, file)
+        }
+        (Element::Face(f), _, None) => face_origin(&origins.prims, f),
+    }
+}
+
+/// Reads the triangles of an `.obj`, `.gltf` or `.glb` file (by extension) without
+/// validating them: the same parsing, triangulation, node transforms and welding as
+/// [`read_mesh`](crate::read_mesh), which is this followed by [`RawMesh::validate`].
+///
+/// # Errors
+/// As [`read_mesh`](crate::read_mesh), except that [`IoError::InvalidMesh`] only comes for
+/// a file with no vertex at all (`NoVertices`).
+///
+/// # Examples
+/// ```no_run
+/// let raw = conformap_io::read_raw_mesh("fixtures/bad/duplicate_face.obj")?;
+/// assert_eq!(raw.source.face_lines.as_deref(), Some(&[5, 6][..]));
+/// # Ok::<(), conformap_io::IoError>(())
+/// ```
+pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
+    let path = path.as_ref();
+    let format = Format::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match format {
+        Format::Obj => read_obj_raw(&bytes, path),
+        Format::Gltf | Format::Glb => {
+            let base = path.parent().unwrap_or(Path::new(""));
+            read_gltf_raw(&bytes, path, Some(base), format)
+        }
+    }
+}
+
+/// [`read_raw_mesh`] from bytes already in memory (tests, fuzzing); errors name the file
+/// `<memory>` and a glTF that refers to external files is an error.
+///
+/// # Errors
+/// As [`read_raw_mesh`].
+pub fn read_raw_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<RawMesh, IoError> {
+    let path = Path::new(MEMORY);
+    match format {
+        Format::Obj => read_obj_raw(bytes, path),
+        Format::Gltf | Format::Glb => read_gltf_raw(bytes, path, None, format),
+    }
+}
