@@ -39,4 +39,40 @@ pub enum DiskError {
         /// Which step produced it.
         stage: &'static str,
     },
+    /// An option is out of range. Fix: see the option's documentation for its range.
+    #[error("invalid option {name}: {reason}")]
+    InvalidOption {
+        /// The option.
+        name: &'static str,
+        /// What is required.
+        reason: &'static str,
+    },
+    /// CCEM's starting boundary (the CEM map's, by default) does not wind once
+    /// counter-clockwise around the circle, even after its out-of-order gaps are repaired,
+    /// so there is no bijective boundary to start from. Fix: start from the arc-length
+    /// boundary (`CcemStart::ArcLength`), which is always in order.
+    #[error("the starting boundary of CCEM does not wind once around the circle")]
+    InvalidStart,
+    /// CCEM's map would fold: faces of the harmonic extension of its boundary have
+    /// non-positive area. With gaps at the floor, the conformal map of this mesh crowds
+    /// boundary vertices (thin limbs, long corridors) closer than f64 resolves even at
+    /// the highest floor tried; with none, the mesh's negative cotangent weights fold the
+    /// harmonic interior map. Fix: cut the long thin parts off (or map them separately), or
+    /// remesh to a Delaunay triangulation; `--method cem` returns CEM's map, folds included.
+    #[error(
+        "the disk map would fold {flipped_faces} faces (first: face {face}) with {held_gaps} \
+         boundary gaps at the floor {floor:.0e} rad: the conformal map of this mesh crowds \
+         boundary vertices closer than f64 resolves, or its negative cotangent weights fold \
+         the interior"
+    )]
+    Folded {
+        /// Faces with non-positive image area.
+        flipped_faces: usize,
+        /// The first such face (0-based).
+        face: usize,
+        /// Boundary gaps held at the floor.
+        held_gaps: usize,
+        /// The last floor tried, radians.
+        floor: f64,
+    },
 }

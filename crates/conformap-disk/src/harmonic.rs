@@ -46,6 +46,7 @@ pub fn harmonic_arc_length(problem: &DiskProblem<'_>) -> DiskMap {
             solve,
             total: problem.assemble_ms + problem.factor_ms + solve,
         },
+        ..SolverReport::default()
     };
     DiskMap { map, report }
 }

@@ -4,7 +4,9 @@
 //! Depends on `conformap-mesh` (validated meshes) and `conformap-operators` (Laplacian,
 //! factorizations); never touches files, spheres or 1-forms. Entry point:
 //! [`DiskProblem::new`] checks the topology, assembles and factors once; the methods
-//! ([`harmonic_arc_length`], [`cem`]) then reuse that factorization.
+//! ([`harmonic_arc_length`], [`cem`], [`ccem`]) then reuse that factorization.
+//! [`compute_disk_map`] does both for a [`DiskMethod`]; the default, CCEM with BFGS
+//! ([`DiskMethod::CcemQn`]), gives the most conformal map (lowest `E_C`) of the four.
 //!
 //! # Example
 //! ```
@@ -31,16 +33,32 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod angles;
+mod ccem;
+mod ccem_options;
+#[cfg(test)]
+mod ccem_tests;
 mod cem;
+mod descent;
+mod energy;
 mod error;
 mod harmonic;
 mod initial;
+mod line_search;
+mod method;
 mod problem;
+mod qn;
 mod report;
+mod schur;
 
 #[doc(hidden)]
 pub mod doc_support;
 
+pub use ccem::{ccem, GAP_FLOOR_MAX, GAP_FLOOR_STEP};
+pub use ccem_options::{
+    CcemOptions, CcemStart, CcemVariant, CCEM_GAMMA1, CCEM_GAMMA2, CCEM_MAX_ITER,
+    CCEM_MAX_LINE_EVALS, CCEM_MIN_GAP, CCEM_QN_MEMORY, CCEM_RHO, CCEM_TOL,
+};
 pub use cem::{cem, interior_residual, CemOptions, CEM_MAX_ITER, CEM_TOL};
 pub use error::DiskError;
 pub use harmonic::harmonic_arc_length;
@@ -48,5 +66,10 @@ pub use initial::{
     angenent_boundary, angenent_rhs, arc_length_boundary, centralize_normalize, centre_face,
     InitialBoundary,
 };
+pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
-pub use report::{DiskMap, SolverReport, Timings};
+pub use report::{
+    BoundaryReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport,
+    StepRecord, Timings,
+};
+pub use schur::{SchurMode, DENSE_SCHUR_MAX_BYTES, EXPECTED_SCHUR_PRODUCTS};

@@ -1,0 +1,305 @@
+//! CCEM: convergent conformal energy minimization on the boundary angles (Kuo, Lin, Yueh,
+//! Yau 2021, Algorithms 4.1 and 4.2), with a guard that keeps the boundary bijective.
+
+use std::time::Instant;
+
+use conformap_mesh::TriMesh;
+use num_complex::Complex64;
+
+use crate::angles::{largest_gap, min_gap, project_to_floor, unwrap_boundary};
+use crate::ccem_options::{CcemOptions, CcemStart, CcemVariant};
+use crate::cem::{cem, interior_residual};
+use crate::descent::{Descent, Stop};
+use crate::energy::{evaluate, Eval};
+use crate::initial::arc_length_boundary;
+use crate::problem::DiskProblem;
+use crate::report::{
+    BoundaryReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings,
+};
+use crate::schur::Schur;
+use crate::DiskError;
+
+/// Each time the map folds with gaps at the floor, the floor is multiplied by this.
+pub const GAP_FLOOR_STEP: f64 = 1e3;
+/// The floor is never raised above this (radians), nor above a tenth of the mean gap
+/// `2π / n_B`: beyond it, the floor would distort the whole boundary. Four floors are
+/// tried from the default `1e-13`: `1e-13, 1e-10, 1e-7, 1e-4`.
+pub const GAP_FLOOR_MAX: f64 = 1e-4;
+
+/// Faces whose image has non-positive signed area: their number and the first one.
+pub(crate) fn flipped_faces(mesh: &TriMesh, f: &[Complex64]) -> (usize, usize) {
+    let mut count = 0;
+    let mut first = usize::MAX;
+    for (k, t) in mesh.faces().iter().enumerate() {
+        let (a, b, c) = (f[t[0] as usize], f[t[1] as usize], f[t[2] as usize]);
+        if !(((b - a).conj() * (c - a)).im > 0.0) {
+            count += 1;
+            first = first.min(k);
+        }
+    }
+    (count, first)
+}
+
+/// What the start produced.
+struct Start {
+    boundary: Vec<Complex64>,
+    report: Option<SolverReport>,
+    extra_factor_ms: f64,
+    /// Why the start is not the one asked for.
+    note: Option<String>,
+}
+
+fn start_boundary(problem: &mut DiskProblem<'_>, start: &CcemStart) -> Result<Start, DiskError> {
+    let arc = |problem: &DiskProblem<'_>, note: Option<String>| Start {
+        boundary: arc_length_boundary(problem.mesh(), &problem.partition().boundary),
+        report: None,
+        extra_factor_ms: 0.0,
+        note,
+    };
+    match start {
+        CcemStart::Cem(o) => match cem(problem, o) {
+            Ok(out) => {
+                let boundary = problem.partition().boundary_values(&out.map);
+                let extra = out.report.timings_ms.factor - problem.factor_ms;
+                Ok(Start {
+                    boundary,
+                    report: Some(out.report),
+                    extra_factor_ms: extra.max(0.0),
+                    note: None,
+                })
+            }
+            // CEM's own numerical failures (a boundary vertex collapsing to the centre on
+            // a tiny mesh) are no reason to give up: any ordered boundary is a start
+            Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
+                Ok(arc(
+                    problem,
+                    Some(format!(
+                        "CEM failed ({e}); started from the arc-length boundary"
+                    )),
+                ))
+            }
+            Err(e) => Err(e),
+        },
+        CcemStart::ArcLength => Ok(arc(problem, None)),
+    }
+}
+
+/// The CCEM disk map (Kuo, Lin, Yueh, Yau 2021): minimizes the conformal energy over the
+/// boundary angles, `E_C(θ) = ½ pᵀAp + ½ qᵀAq − ½ pᵀCq` (Eq. 3.17) with the Schur
+/// complement `A` of Eq. 3.15, by steepest descent with the quadratic step (Eq. 4.1,
+/// 4.5–4.6, Algorithm 4.1) or BFGS (Algorithm 4.2), both under a line search enforcing
+/// the Wolfe conditions, then maps the interior by one harmonic solve.
+///
+/// - Starts from the CEM map by default (as the paper), reusing the factor of `L_II`
+///   that [`DiskProblem::new`] made: no further factorization.
+/// - Keeps the boundary bijective: the angles stay strictly increasing. A step may go at
+///   most `ρ` of the way to the nearest collision of neighbours and never below
+///   `min_gap`; gaps that the minimization drives to the floor are held there (their
+///   vertices move together), which happens where the conformal map crowds the boundary
+///   (thin limbs, long corridors). The report's [`BoundaryReport`] says how many.
+/// - Never returns a folded map: if faces of the final map fold while gaps sit at the
+///   floor (the crowding is below what f64 resolves on this mesh), the floor is raised
+///   ×[`GAP_FLOOR_STEP`] and the minimization continues; if it still folds at
+///   [`GAP_FLOOR_MAX`], or folds without crowding, CCEM refuses with
+///   [`DiskError::Folded`].
+/// - Energy never rises on an accepted step; the returned map is the last iterate, which
+///   is the best.
+///
+/// # Errors
+/// [`DiskError::InvalidOption`] for out-of-range options; errors of the CEM start;
+/// [`DiskError::InvalidStart`] when the starting boundary cannot be made to wind once
+/// around the circle; [`DiskError::NonFinite`] if the energy is not finite (cotangent
+/// weights too badly conditioned); [`DiskError::Folded`] when no floor up to
+/// [`GAP_FLOOR_MAX`] gives a map without folded faces.
+///
+/// # Examples
+/// ```
+/// use conformap_disk::{ccem, cem, CcemOptions, CemOptions, DiskProblem};
+/// use conformap_mesh::TriMesh;
+/// // a bumpy hexagonal patch: a centre vertex and two rings
+/// let mut pos = vec![[0.0, 0.0, 0.3]];
+/// for r in 1..=2 {
+///     for k in 0..6 * r {
+///         let t = k as f64 * std::f64::consts::TAU / (6 * r) as f64;
+///         pos.push([r as f64 * t.cos(), r as f64 * t.sin(), 0.1 * (3.0 * t).sin()]);
+///     }
+/// }
+/// # let faces = conformap_disk::doc_support::two_ring_faces();
+/// let mesh = TriMesh::try_new(pos, faces)?;
+/// let mut problem = DiskProblem::new(&mesh)?;
+/// let c = cem(&mut problem, &CemOptions::DEFAULT)?;
+/// let out = ccem(&mut problem, &CcemOptions::DEFAULT)?;
+/// let e = |m: &[num_complex::Complex64]| problem.conformal_energy(m);
+/// assert!(e(&out.map) <= e(&c.map));
+/// for &v in &mesh.boundary_loops()[0] {
+///     assert!((out.map[v as usize].norm() - 1.0).abs() < 1e-12);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<DiskMap, DiskError> {
+    options.validate()?;
+    let t0 = Instant::now();
+    let start = start_boundary(problem, &options.start)?;
+    let start_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let problem: &DiskProblem<'_> = problem;
+    let mut notes = Vec::new();
+    match &start.report {
+        _ if start.note.is_some() => notes.extend(start.note.clone()),
+        Some(r) => notes.push(format!(
+            "started from CEM ({} iterations, E_C = {:.6e})",
+            r.iterations,
+            r.energy_history
+                .get(r.best_iteration)
+                .copied()
+                .unwrap_or(f64::NAN)
+        )),
+        None => notes.push("started from the arc-length boundary".to_string()),
+    }
+    let unwrapped =
+        unwrap_boundary(&start.boundary, options.min_gap).ok_or(DiskError::InvalidStart)?;
+    if unwrapped.repaired > 0 {
+        notes.push(format!(
+            "the starting boundary was out of order or crowded below min_gap: {} gaps \
+             repaired",
+            unwrapped.repaired
+        ));
+    }
+    let schur = Schur::new(problem, options.schur);
+    let cur = evaluate(&schur, unwrapped.theta);
+    if !cur.energy.is_finite() {
+        return Err(DiskError::NonFinite {
+            vertex: problem.partition().boundary[0] as usize,
+            stage: "CCEM energy of the start",
+        });
+    }
+    let mut descent = Descent::new(&schur, options);
+    descent.log_state(&cur);
+    let floor_max = GAP_FLOOR_MAX.min(0.1 * std::f64::consts::TAU / problem.num_boundary() as f64);
+    let t_iter = Instant::now();
+    let (cur, stop, map, flips, finish_ms) =
+        minimize_valid(problem, &mut descent, cur, floor_max, &mut notes)?;
+    let iterations_ms = t_iter.elapsed().as_secs_f64() * 1e3 - finish_ms;
+    let converged = matches!(stop, Stop::Tolerance | Stop::Rounding);
+    match stop {
+        Stop::Rounding => {
+            notes.push("stopped: no decrease left above the rounding level of E_C".into())
+        }
+        Stop::Stalled => notes.push("stopped: the line search found no decrease".into()),
+        Stop::MaxIter => notes.push("stopped at the iteration cap".into()),
+        Stop::Tolerance => {}
+    }
+    let (gap, after) = min_gap(&cur.theta);
+    let held = descent.held;
+    if held > 0 {
+        notes.push(format!(
+            "{held} boundary gaps held at the floor {:.1e} rad: the conformal map crowds \
+             these boundary vertices closer than that; the map is the energy minimum with \
+             the boundary kept in order",
+            descent.floor
+        ));
+    }
+    notes.push(format!(
+        "Schur complement {} (n_B = {}), {} products",
+        schur.mode().name(),
+        problem.num_boundary(),
+        schur.products()
+    ));
+    let finished_at = t0.elapsed().as_secs_f64() * 1e3;
+    let residual = interior_residual(problem, &map);
+    let elapsed = t0.elapsed().as_secs_f64() * 1e3;
+    let factorizations = start.report.as_ref().map_or(1, |r| r.factorizations);
+    let qn = options.variant == CcemVariant::QuasiNewton;
+    let mut ls = descent.ls;
+    ls.qn_pairs_skipped = descent.bfgs.skipped;
+    let report = SolverReport {
+        method: if qn { "ccem-qn" } else { "ccem" }.to_string(),
+        iterations: descent.iterations,
+        converged,
+        best_iteration: descent.history.len() - 1,
+        energy_history: descent.history,
+        residual,
+        factorizations,
+        notes,
+        timings_ms: Timings {
+            assemble: problem.assemble_ms,
+            factor: problem.factor_ms + start.extra_factor_ms,
+            solve: elapsed - start.extra_factor_ms,
+            total: problem.assemble_ms + problem.factor_ms + elapsed,
+        },
+        gradient_norm_history: descent.gnorm,
+        line_search: Some(ls),
+        schur: Some(SchurReport {
+            mode: schur.mode().name().to_string(),
+            form_ms: schur.form_ms,
+            products: schur.products(),
+        }),
+        stages_ms: Some(CcemStages {
+            start: start_ms,
+            schur: schur.form_ms,
+            iterations: iterations_ms,
+            finish: finish_ms + (t0.elapsed().as_secs_f64() * 1e3 - finished_at),
+        }),
+        boundary: Some(BoundaryReport {
+            min_gap: gap,
+            min_gap_after: after,
+            gap_floor: descent.floor,
+            gaps_at_floor: held,
+            start_repaired_gaps: unwrapped.repaired,
+            flipped_faces: flips,
+        }),
+    };
+    Ok(DiskMap { map, report })
+}
+
+/// Minimizes, maps the interior, and checks the map for folds. A fold with gaps at the
+/// floor means the floor is below what f64 resolves for this mesh: the floor is raised
+/// ([`GAP_FLOOR_STEP`]) and the minimization continues from the angles projected onto it,
+/// up to `floor_max`. Returns the last iterate, why it stopped, the map, its flipped
+/// faces (0) and the milliseconds spent in harmonic solves and fold checks.
+///
+/// # Errors
+/// [`DiskError::Folded`] when the map still folds at the highest floor, or folds with no
+/// gap at the floor (the cotangent weights of the mesh, not the boundary, fold it).
+fn minimize_valid(
+    problem: &DiskProblem<'_>,
+    descent: &mut Descent<'_, '_, '_>,
+    mut cur: Eval,
+    floor_max: f64,
+    notes: &mut Vec<String>,
+) -> Result<(Eval, Stop, Vec<Complex64>, usize, f64), DiskError> {
+    let mut finish_ms = 0.0;
+    loop {
+        let (last, stop) = descent.minimize(cur);
+        cur = last;
+        let t = Instant::now();
+        let map = problem.harmonic_extension(&cur.f);
+        let (flips, face) = flipped_faces(problem.mesh(), &map);
+        finish_ms += t.elapsed().as_secs_f64() * 1e3;
+        if flips == 0 {
+            return Ok((cur, stop, map, 0, finish_ms));
+        }
+        let next = descent.floor * GAP_FLOOR_STEP;
+        let crowded = descent.held > 0 || min_gap(&cur.theta).0 < next;
+        let folded = DiskError::Folded {
+            flipped_faces: flips,
+            face,
+            held_gaps: descent.held,
+            floor: descent.floor,
+        };
+        if !crowded || next > floor_max {
+            return Err(folded);
+        }
+        let Some(theta) = project_to_floor(&cur.theta, next, largest_gap(&cur.theta)) else {
+            return Err(folded);
+        };
+        notes.push(format!(
+            "{flips} faces folded with boundary gaps at {:.0e} rad (below what f64 resolves \
+             on this mesh): floor raised to {next:.0e}",
+            descent.floor
+        ));
+        descent.floor = next;
+        descent.bfgs.reset();
+        cur = evaluate(descent.schur, theta);
+        descent.log_state(&cur);
+    }
+}

@@ -1,0 +1,192 @@
+//! One entry point for every disk method: [`compute_disk_map`] with a [`DiskMethod`] and
+//! the `--max-iter` / `--tol` overrides a command line offers.
+
+use std::fmt;
+use std::str::FromStr;
+
+use conformap_mesh::TriMesh;
+
+use crate::ccem_options::{CcemOptions, CcemVariant};
+use crate::{ccem, cem, harmonic_arc_length, CemOptions, DiskError, DiskMap, DiskProblem};
+
+/// A disk parameterization method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum DiskMethod {
+    /// Harmonic map to the arc-length circle (baseline, one solve).
+    Harmonic,
+    /// CEM, Yueh et al. 2017, Algorithm 1 (best iterate of 20).
+    Cem,
+    /// CCEM, Kuo et al. 2021, Algorithm 4.1: steepest descent with the quadratic step.
+    Ccem,
+    /// CCEM with BFGS, Algorithm 4.2 (default: the lowest energy, in the fewest
+    /// iterations, on every class-a test mesh).
+    #[default]
+    CcemQn,
+}
+
+impl DiskMethod {
+    /// Every method, in the order of the CLI's help.
+    pub const ALL: [Self; 4] = [Self::CcemQn, Self::Ccem, Self::Cem, Self::Harmonic];
+
+    /// The name used on the command line and in reports: `harmonic`, `cem`, `ccem`,
+    /// `ccem-qn`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Harmonic => "harmonic",
+            Self::Cem => "cem",
+            Self::Ccem => "ccem",
+            Self::CcemQn => "ccem-qn",
+        }
+    }
+}
+
+impl fmt::Display for DiskMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for DiskMethod {
+    type Err = DiskError;
+
+    /// Parses a method name ([`DiskMethod::name`]).
+    fn from_str(s: &str) -> Result<Self, DiskError> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or(DiskError::InvalidOption {
+                name: "method",
+                reason: "expected one of ccem-qn, ccem, cem, harmonic",
+            })
+    }
+}
+
+/// Options of [`compute_disk_map`]: each method's own options, and the overrides of its
+/// iteration cap and tolerance that a command line's `--max-iter` / `--tol` give.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub struct DiskOptions {
+    /// Overrides the method's iteration cap. Default: `None` (CEM 20, CCEM 1000).
+    pub max_iter: Option<usize>,
+    /// Overrides the method's relative energy tolerance. Default: `None` (CEM 1e-6,
+    /// CCEM 1e-9).
+    pub tol: Option<f64>,
+    /// Options of CEM. Default: [`CemOptions::DEFAULT`].
+    pub cem: CemOptions,
+    /// Options of CCEM (both variants; the variant is set by the method). Default:
+    /// [`CcemOptions::DEFAULT`].
+    pub ccem: CcemOptions,
+}
+
+impl DiskOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        max_iter: None,
+        tol: None,
+        cem: CemOptions::DEFAULT,
+        ccem: CcemOptions::DEFAULT,
+    };
+
+    /// Sets [`Self::max_iter`].
+    #[must_use]
+    pub fn with_max_iter(mut self, max_iter: Option<usize>) -> Self {
+        self.max_iter = max_iter;
+        self
+    }
+
+    /// Sets [`Self::tol`].
+    #[must_use]
+    pub fn with_tol(mut self, tol: Option<f64>) -> Self {
+        self.tol = tol;
+        self
+    }
+
+    /// Sets [`Self::cem`].
+    #[must_use]
+    pub fn with_cem(mut self, cem: CemOptions) -> Self {
+        self.cem = cem;
+        self
+    }
+
+    /// Sets [`Self::ccem`].
+    #[must_use]
+    pub fn with_ccem(mut self, ccem: CcemOptions) -> Self {
+        self.ccem = ccem;
+        self
+    }
+}
+
+/// Runs `method` on a problem already prepared (the factorization is reused).
+///
+/// # Errors
+/// The method's errors (see [`cem`], [`ccem`]); [`DiskError::InvalidOption`] for a
+/// negative or non-finite tolerance.
+pub fn run_disk_method(
+    problem: &mut DiskProblem<'_>,
+    method: DiskMethod,
+    options: &DiskOptions,
+) -> Result<DiskMap, DiskError> {
+    if let Some(tol) = options.tol {
+        if !(tol >= 0.0 && tol.is_finite()) {
+            return Err(DiskError::InvalidOption {
+                name: "tol",
+                reason: "must be a finite number ≥ 0",
+            });
+        }
+    }
+    match method {
+        DiskMethod::Harmonic => Ok(harmonic_arc_length(problem)),
+        DiskMethod::Cem => {
+            let mut o = options.cem;
+            o.max_iter = options.max_iter.unwrap_or(o.max_iter);
+            o.tol = options.tol.unwrap_or(o.tol);
+            cem(problem, &o)
+        }
+        DiskMethod::Ccem | DiskMethod::CcemQn => {
+            let variant = if method == DiskMethod::Ccem {
+                CcemVariant::Gradient
+            } else {
+                CcemVariant::QuasiNewton
+            };
+            let mut o = options.ccem.with_variant(variant);
+            o.max_iter = options.max_iter.unwrap_or(o.max_iter);
+            o.tol = options.tol.unwrap_or(o.tol);
+            ccem(problem, &o)
+        }
+    }
+}
+
+/// The disk map of `mesh` by `method`: prepares the problem ([`DiskProblem::new`]:
+/// topology check, Laplacian, one factorization) and runs the method.
+///
+/// # Errors
+/// [`DiskProblem::new`]'s errors and the method's.
+///
+/// # Examples
+/// ```
+/// use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
+/// use conformap_mesh::TriMesh;
+/// let mut pos = vec![[0.0, 0.0, 0.3]];
+/// for r in 1..=2 {
+///     for k in 0..6 * r {
+///         let t = k as f64 * std::f64::consts::TAU / (6 * r) as f64;
+///         pos.push([r as f64 * t.cos(), r as f64 * t.sin(), 0.1 * (3.0 * t).sin()]);
+///     }
+/// }
+/// # let faces = conformap_disk::doc_support::two_ring_faces();
+/// let mesh = TriMesh::try_new(pos, faces)?;
+/// let method: DiskMethod = "ccem-qn".parse()?;
+/// let out = compute_disk_map(&mesh, method, &DiskOptions::DEFAULT.with_tol(Some(1e-10)))?;
+/// assert_eq!(out.report.method, "ccem-qn");
+/// assert!(out.report.converged);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn compute_disk_map(
+    mesh: &TriMesh,
+    method: DiskMethod,
+    options: &DiskOptions,
+) -> Result<DiskMap, DiskError> {
+    let mut problem = DiskProblem::new(mesh)?;
+    run_disk_method(&mut problem, method, options)
+}
