@@ -133,10 +133,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .count();
             let ls = r.line_search.clone().unwrap_or_default();
             if table {
-                let (mode, form, prods) = r
-                    .schur
-                    .as_ref()
-                    .map_or(("-".to_string(), 0.0, 0), |s| (s.mode.clone(), s.form_ms, s.products));
+                let (mode, form, prods) = r.schur.as_ref().map_or(("-".to_string(), 0.0, 0), |s| {
+                    (s.mode.clone(), s.form_ms, s.products)
+                });
                 let st = r.stages_ms.clone().unwrap_or_default();
                 println!(
                     "TABLE {short} {label} start_ms {:.0} iter_ms {:.0} finish_ms {:.0} E_mesh {e_mesh:.6e} E_prob {e_full:.6e} it {} conv {} flips {flips} total_ms {:.0} factor_ms {:.0} method_ms {ms:.0} schur {mode} form_ms {form:.0} prods {prods} evals {} held {}",

@@ -13,9 +13,7 @@ use crate::descent::{Descent, Stop};
 use crate::energy::{evaluate, Eval};
 use crate::initial::arc_length_boundary;
 use crate::problem::DiskProblem;
-use crate::report::{
-    BoundaryReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings,
-};
+use crate::report::{BoundaryReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings};
 use crate::schur::Schur;
 use crate::DiskError;
 

@@ -137,7 +137,9 @@ pub fn cem(problem: &mut DiskProblem<'_>, options: &CemOptions) -> Result<DiskMa
         // reflection of Remark 3 is at infinity) ends the iteration: the best iterate so
         // far is still a valid map
         if let Err(e) = centralize_normalize(&mut fb, &boundary_ids, "CEM boundary update") {
-            notes.push(format!("iteration {k} stopped: {e}; the best iterate is returned"));
+            notes.push(format!(
+                "iteration {k} stopped: {e}; the best iterate is returned"
+            ));
             break;
         }
         fi = problem.interior_solution(&fb);
