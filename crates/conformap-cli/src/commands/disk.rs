@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use conformap_disk::{cem, harmonic_arc_length, CemOptions, DiskProblem, CEM_MAX_ITER, CEM_TOL};
+use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
 use conformap_io::{RawMesh, SourceInfo};
 use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
@@ -14,21 +14,33 @@ use crate::commands::write_json;
 use crate::failure::{repair_failure, Failure};
 use crate::report::{ms_since, InputInfo, StageTimings};
 
-/// The disk-map method.
+/// The disk-map method (see `conformap_disk::DiskMethod`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Method {
-    /// CEM (Yueh et al. 2017): Angenent initial map and boundary iteration.
+    /// CCEM with BFGS (Kuo et al. 2021, Algorithm 4.2), started from CEM: the lowest
+    /// conformal energy, converged, never folded (default).
+    #[value(name = "ccem-qn")]
+    CcemQn,
+    /// CCEM steepest descent with the quadratic step (Algorithm 4.1).
+    Ccem,
+    /// CEM (Yueh et al. 2017): Angenent initial map and 20 boundary iterations.
     Cem,
     /// Harmonic map to an arc-length circle (baseline; no boundary optimization).
     Harmonic,
 }
 
 impl Method {
-    fn name(self) -> &'static str {
+    fn library(self) -> DiskMethod {
         match self {
-            Self::Cem => "cem",
-            Self::Harmonic => "harmonic",
+            Self::CcemQn => DiskMethod::CcemQn,
+            Self::Ccem => DiskMethod::Ccem,
+            Self::Cem => DiskMethod::Cem,
+            Self::Harmonic => DiskMethod::Harmonic,
         }
+    }
+
+    fn name(self) -> &'static str {
+        self.library().name()
     }
 }
 
@@ -41,12 +53,12 @@ pub struct DiskArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Method.
-    #[arg(long, value_enum, default_value_t = Method::Cem)]
+    #[arg(long, value_enum, default_value_t = Method::CcemQn)]
     pub method: Method,
-    /// Iteration cap (CEM default 20, as in the papers).
+    /// Iteration cap (default: CCEM 1000, CEM 20 as in the papers).
     #[arg(long)]
     pub max_iter: Option<usize>,
-    /// Relative energy tolerance (default 1e-6).
+    /// Relative energy tolerance (default: CCEM 1e-9, CEM 1e-6).
     #[arg(long)]
     pub tol: Option<f64>,
     /// Also write the raw map as a flat mesh (u, v, 0).
@@ -160,15 +172,10 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
 
     let in_file = |e: conformap_disk::DiskError| Failure::from(e).in_file(&args.mesh);
     let mut problem = DiskProblem::new(mesh).map_err(in_file)?;
-    let result = match args.method {
-        Method::Harmonic => harmonic_arc_length(&problem),
-        Method::Cem => {
-            let options = CemOptions::DEFAULT
-                .with_max_iter(args.max_iter.unwrap_or(CEM_MAX_ITER))
-                .with_tol(args.tol.unwrap_or(CEM_TOL));
-            cem(&mut problem, &options).map_err(in_file)?
-        }
-    };
+    let options = DiskOptions::DEFAULT
+        .with_max_iter(args.max_iter)
+        .with_tol(args.tol);
+    let result = run_disk_method(&mut problem, args.method.library(), &options).map_err(in_file)?;
     if args.strict && !result.report.converged {
         return Err(Failure::Numerical(format!(
             "{} did not converge in {} iterations (--strict); nothing written",

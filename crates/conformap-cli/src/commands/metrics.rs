@@ -29,39 +29,49 @@ pub struct MetricsArgs {
 pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
-    let param = conformap_io::read_mesh(&args.param)?;
-    let pm = &param.mesh;
-    if pm.num_vertices() != mesh.num_vertices() || pm.num_faces() != mesh.num_faces() {
+    // the map is read without validation: a valid map may crowd triangles far below the
+    // degenerate-area threshold of a 3D mesh; only its connectivity must match the mesh's
+    let param = conformap_io::read_raw_mesh(&args.param)?;
+    let (pv, pf) = (param.positions.len(), param.faces.len());
+    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
         return Err(Failure::input(format!(
             "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
              mesh's vertices and faces",
             args.param.display(),
-            pm.num_vertices(),
-            pm.num_faces(),
+            pv,
+            pf,
             args.mesh.display(),
             mesh.num_vertices(),
             mesh.num_faces()
         )));
     }
-    if let Some(face) = (0..mesh.num_faces()).find(|&f| pm.faces()[f] != mesh.faces()[f]) {
+    if let Some(face) = (0..mesh.num_faces()).find(|&f| param.faces[f] != mesh.faces()[f]) {
         return Err(Failure::input(format!(
             "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
              mesh's faces in the same order",
             args.param.display(),
-            pm.faces()[face],
+            param.faces[face],
             args.mesh.display(),
             mesh.faces()[face]
         )));
     }
     let (map, source): (Vec<Complex64>, &str) = match &param.uv {
-        Some(uv) => (
-            uv.iter()
-                .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
-                .collect(),
-            "texture coordinates",
-        ),
+        Some(uv) => {
+            let mut map = Vec::with_capacity(uv.len());
+            for (vertex, t) in uv.iter().enumerate() {
+                let Some(t) = t else {
+                    return Err(Failure::input(format!(
+                        "{}: vertex {vertex} has no texture coordinate",
+                        args.param.display()
+                    )));
+                };
+                map.push(Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0));
+            }
+            (map, "texture coordinates")
+        }
         None => (
-            pm.positions()
+            param
+                .positions
                 .iter()
                 .map(|p| Complex64::new(p[0], p[1]))
                 .collect(),
