@@ -44,12 +44,14 @@ mod energy;
 mod error;
 mod harmonic;
 mod initial;
+mod laplacian_choice;
 mod line_search;
 mod method;
 mod problem;
 mod qn;
 mod report;
 mod schur;
+mod unfold;
 
 #[doc(hidden)]
 pub mod doc_support;
@@ -66,6 +68,7 @@ pub use initial::{
     angenent_boundary, angenent_rhs, arc_length_boundary, centralize_normalize, centre_face,
     InitialBoundary,
 };
+pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
 pub use report::{
@@ -73,3 +76,4 @@ pub use report::{
     StepRecord, Timings,
 };
 pub use schur::{SchurMode, DENSE_SCHUR_MAX_BYTES, EXPECTED_SCHUR_PRODUCTS};
+pub use unfold::{unfold_disk_map, Unfolded, UNFOLD_MIN_GAP};

@@ -1,15 +1,24 @@
 //! The prepared disk problem: Laplacian, interior/boundary blocks and their factorizations,
 //! built once and shared by every disk method.
+//!
+//! Which Laplacian: see [`LaplacianKind`]. The default solves with the mesh's own
+//! cotangent weights (CEM Eq. 6, the operator `E_C` is judged with) and keeps the
+//! intrinsic Delaunay Laplacian and Floater's mean value weights in reserve for
+//! [`DiskProblem::guarded_extension`], which re-solves an interior that folds.
 
 use std::time::Instant;
 
 use conformap_mesh::{Topology, TriMesh};
 use conformap_operators::{
-    cotan_laplacian, quadratic_form, Cholesky, LaplacianBlocks, LuSolver, Partition,
+    quadratic_form, Cholesky, IntrinsicStats, LaplacianBlocks, LuSolver, Partition,
 };
 use num_complex::Complex64;
 use sprs::CsMat;
 
+use crate::laplacian_choice::{
+    assemble, count_flipped, note, GuardedExtension, InteriorOperator, LaplacianKind,
+    ProblemOptions, Reserve,
+};
 use crate::DiskError;
 
 /// Everything a disk method needs about a mesh with one boundary loop, factored once.
@@ -24,6 +33,9 @@ pub struct DiskProblem<'m> {
     blocks: LaplacianBlocks,
     interior_factor: Cholesky,
     boundary_solver: Option<LuSolver>,
+    kind: LaplacianKind,
+    intrinsic: Option<IntrinsicStats>,
+    reserve: Reserve,
     /// Milliseconds spent assembling `L` and its blocks.
     pub assemble_ms: f64,
     /// Milliseconds spent factoring `L_II` (symbolic + numeric).
@@ -31,24 +43,70 @@ pub struct DiskProblem<'m> {
 }
 
 impl<'m> DiskProblem<'m> {
-    /// Checks the topology, assembles the cotangent Laplacian (CEM Eq. 6), splits it into
-    /// the blocks of CEM Eq. 9 and factors `L_II` with a sparse Cholesky.
+    /// [`Self::with_options`] with the default [`ProblemOptions`] (the Laplacian chosen by
+    /// [`LaplacianKind::Auto`]).
+    ///
+    /// # Errors
+    /// As [`Self::with_options`].
+    pub fn new(mesh: &'m TriMesh) -> Result<Self, DiskError> {
+        Self::with_options(mesh, &ProblemOptions::DEFAULT)
+    }
+
+    /// Checks the topology, assembles the Laplacian the options ask for (CEM Eq. 6 on the
+    /// input or on the intrinsic Delaunay triangulation), splits it into the blocks of
+    /// CEM Eq. 9 and factors `L_II` with a sparse Cholesky.
     ///
     /// # Errors
     /// [`DiskError::WrongTopology`] unless the mesh is a disk; [`DiskError::NoInteriorVertex`];
-    /// [`DiskError::Operator`] if `L_II` is not positive definite.
-    pub fn new(mesh: &'m TriMesh) -> Result<Self, DiskError> {
+    /// [`DiskError::Operator`] if `L_II` is not positive definite or the intrinsic flips
+    /// fail (bad options, flip budget exhausted).
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_disk::{DiskProblem, LaplacianKind, ProblemOptions};
+    /// use conformap_mesh::TriMesh;
+    /// // a flat hexagonal patch (centre and two rings); one outer vertex is pulled in
+    /// // towards the first ring, so the ring edge in front of it faces 60° + 146° > 180°
+    /// let mut pos = vec![[0.0, 0.0, 0.0]];
+    /// for r in 1..=2 {
+    ///     for k in 0..6 * r {
+    ///         let t = k as f64 * std::f64::consts::TAU / (6 * r) as f64;
+    ///         pos.push([r as f64 * t.cos(), r as f64 * t.sin(), 0.0]);
+    ///     }
+    /// }
+    /// pos[8] = [0.88, 0.508, 0.0];
+    /// # let faces = conformap_disk::doc_support::two_ring_faces();
+    /// let mesh = TriMesh::try_new(pos, faces)?;
+    /// let plain = DiskProblem::with_options(
+    ///     &mesh,
+    ///     &ProblemOptions::DEFAULT.with_laplacian(LaplacianKind::Cotan),
+    /// )?;
+    /// let intrinsic = DiskProblem::with_options(
+    ///     &mesh,
+    ///     &ProblemOptions::DEFAULT.with_laplacian(LaplacianKind::IntrinsicDelaunay),
+    /// )?;
+    /// assert_eq!(plain.laplacian_kind(), LaplacianKind::Cotan);
+    /// assert_eq!(intrinsic.laplacian_kind(), LaplacianKind::IntrinsicDelaunay);
+    /// assert!(intrinsic.intrinsic_stats().is_some_and(|s| s.flips > 0));
+    /// // the default solves with the plain Laplacian and keeps the intrinsic one in reserve
+    /// let auto = DiskProblem::new(&mesh)?;
+    /// assert_eq!(auto.laplacian_kind(), LaplacianKind::Cotan);
+    /// assert!(auto.has_intrinsic_reserve());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_options(mesh: &'m TriMesh, options: &ProblemOptions) -> Result<Self, DiskError> {
         let found = mesh.topology();
         if found != Topology::Disk {
             return Err(DiskError::WrongTopology { found });
         }
         let t0 = Instant::now();
-        let laplacian = cotan_laplacian(mesh);
         let boundary = mesh.boundary_loops()[0].clone();
         let partition = Partition::new(mesh.num_vertices(), &boundary);
         if partition.interior.is_empty() {
             return Err(DiskError::NoInteriorVertex);
         }
+        let assembled = assemble(mesh, &partition, options)?;
+        let laplacian = assembled.laplacian;
         let blocks = LaplacianBlocks::new(&laplacian, &partition);
         let assemble_ms = t0.elapsed().as_secs_f64() * 1e3;
         let t1 = Instant::now();
@@ -61,6 +119,9 @@ impl<'m> DiskProblem<'m> {
             blocks,
             interior_factor,
             boundary_solver: None,
+            kind: assembled.kind,
+            intrinsic: assembled.stats,
+            reserve: assembled.reserve,
             assemble_ms,
             factor_ms,
         })
@@ -71,9 +132,42 @@ impl<'m> DiskProblem<'m> {
         self.mesh
     }
 
-    /// The full cotangent Laplacian `L`.
+    /// The full Laplacian `L` the problem solves with (see [`Self::laplacian_kind`]).
     pub fn laplacian(&self) -> &CsMat<f64> {
         &self.laplacian
+    }
+
+    /// The Laplacian the problem solves with: [`LaplacianKind::Cotan`] or
+    /// [`LaplacianKind::IntrinsicDelaunay`] (`Auto` resolves to `Cotan`, with the intrinsic
+    /// Delaunay Laplacian in reserve on a non-Delaunay mesh).
+    pub fn laplacian_kind(&self) -> LaplacianKind {
+        self.kind
+    }
+
+    /// What the intrinsic Delaunay flips did: for [`LaplacianKind::IntrinsicDelaunay`]
+    /// always, for `Auto` once the reserve was built (a folded interior), else `None`.
+    pub fn intrinsic_stats(&self) -> Option<&IntrinsicStats> {
+        self.intrinsic
+            .as_ref()
+            .or_else(|| self.reserve.intrinsic_stats())
+    }
+
+    /// Whether an intrinsic Delaunay Laplacian different from the one solved with stands by
+    /// for [`Self::guarded_extension`] (`Auto` on a non-Delaunay mesh).
+    pub fn has_intrinsic_reserve(&self) -> bool {
+        self.reserve.has_intrinsic()
+    }
+
+    /// Milliseconds [`Self::guarded_extension`] spent building and factoring the operators
+    /// in reserve (0 until a map folds; not in [`Self::assemble_ms`] or
+    /// [`Self::factor_ms`]).
+    pub fn reserve_factor_ms(&self) -> f64 {
+        self.reserve.factor_ms()
+    }
+
+    /// One line for a solver report saying which Laplacian was used and why.
+    pub fn laplacian_note(&self) -> String {
+        note(self.kind, self.intrinsic.as_ref(), &self.reserve)
     }
 
     /// The interior/boundary partition (boundary in loop order).
@@ -103,6 +197,66 @@ impl<'m> DiskProblem<'m> {
         self.partition.assemble(&interior, boundary)
     }
 
+    /// The harmonic extension of `boundary`, checked for folds. With the problem's own
+    /// Laplacian first; if faces fold, the interior is re-solved with the operators in
+    /// reserve, in this order, until one folds no face (the one folding the fewest is kept):
+    /// 1. the intrinsic Delaunay Laplacian ([`LaplacianKind::Auto`] on a mesh with a
+    ///    negative weight at an interior vertex):
+    ///    no negative interior weight, so with the boundary in order on the circle the map
+    ///    is an embedding of the intrinsic triangulation (Tutte, Floater); an input face
+    ///    that is not in that triangulation (a flipped edge's) can still fold as a straight
+    ///    triangle;
+    /// 2. Floater's mean value map: positive weights on the input triangulation itself, so
+    ///    with the boundary in strictly convex position (distinct points on the circle, in
+    ///    order) no input face folds (Floater 2003); not conformal, a last resort.
+    ///
+    /// Folds that remain come from the boundary (out of order, or crowded below what f64
+    /// resolves): see [`crate::unfold_disk_map`].
+    ///
+    /// # Errors
+    /// [`DiskError::Operator`] if a reserve operator cannot be factored.
+    pub fn guarded_extension(&self, boundary: &[Complex64]) -> Result<GuardedExtension, DiskError> {
+        let map = self.harmonic_extension(boundary);
+        let (flips, first) = count_flipped(self.mesh, &map);
+        let own = match self.kind {
+            LaplacianKind::IntrinsicDelaunay => InteriorOperator::IntrinsicDelaunay,
+            _ => InteriorOperator::Cotan,
+        };
+        let mut best = GuardedExtension {
+            map,
+            flipped_faces: flips,
+            first_flipped: first,
+            flipped_faces_before: flips,
+            operator: own,
+        };
+        if flips == 0 {
+            return Ok(best);
+        }
+        let consider = |best: &mut GuardedExtension, interior: &[Complex64], operator| {
+            let alt = self.partition.assemble(interior, boundary);
+            let (n, first) = count_flipped(self.mesh, &alt);
+            if n < best.flipped_faces {
+                best.map = alt;
+                best.flipped_faces = n;
+                best.first_flipped = first;
+                best.operator = operator;
+            }
+        };
+        if let Some(interior) =
+            self.reserve
+                .intrinsic_solution(self.mesh, &self.partition, boundary)?
+        {
+            consider(&mut best, &interior, InteriorOperator::IntrinsicDelaunay);
+        }
+        if best.flipped_faces > 0 {
+            let interior =
+                self.reserve
+                    .mean_value_solution(self.mesh, &self.partition, boundary)?;
+            consider(&mut best, &interior, InteriorOperator::MeanValue);
+        }
+        Ok(best)
+    }
+
     /// Interior values of the harmonic extension of `boundary` (interior order).
     pub fn interior_solution(&self, boundary: &[Complex64]) -> Vec<Complex64> {
         let mut rhs = self.blocks.ib_mul(boundary);
@@ -127,7 +281,9 @@ impl<'m> DiskProblem<'m> {
         }
     }
 
-    /// Dirichlet energy `½ fᴴ L f` (CEM Eq. 5).
+    /// Dirichlet energy `½ fᴴ L f` (CEM Eq. 5) with the problem's Laplacian: on the
+    /// intrinsic Delaunay triangulation it is never above the mesh's own (Rippa's theorem,
+    /// intrinsic form: Bobenko & Springborn 2007), which the metrics crate reports.
     pub fn dirichlet_energy(&self, f: &[Complex64]) -> f64 {
         quadratic_form(&self.laplacian, f)
     }
@@ -137,7 +293,8 @@ impl<'m> DiskProblem<'m> {
         polygon_area_of(&self.partition.boundary, f)
     }
 
-    /// Conformal energy `E_C = E_D − A` (CEM Eq. 7).
+    /// Conformal energy `E_C = E_D − A` (CEM Eq. 7) with the problem's Laplacian (the
+    /// energy the solvers minimize; see [`Self::dirichlet_energy`]).
     pub fn conformal_energy(&self, f: &[Complex64]) -> f64 {
         self.dirichlet_energy(f) - self.image_area(f)
     }

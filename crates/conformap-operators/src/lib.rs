@@ -23,16 +23,23 @@
 
 mod cholesky;
 mod geometry;
+mod intrinsic;
 mod laplacian;
 mod lu;
+mod mean_value;
 
 pub use cholesky::{relative_residual, Cholesky, CholeskyOptions, FactorStats, Ordering};
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
     triangle_cotangents,
 };
+pub use intrinsic::{
+    intrinsic_delaunay_laplacian, intrinsic_delaunay_laplacian_with, IntrinsicOptions,
+    IntrinsicStats, IntrinsicTriangulation, INTRINSIC_DELAUNAY_TOL, INTRINSIC_MAX_FLIPS_PER_EDGE,
+};
 pub use laplacian::{cotan_laplacian, mul_complex, quadratic_form, LaplacianBlocks, Partition};
 pub use lu::LuSolver;
+pub use mean_value::mean_value_matrix;
 
 /// Errors of the operators crate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -59,6 +66,25 @@ pub enum OperatorError {
     BadPermutation {
         /// Dimension.
         n: usize,
+    },
+    /// The intrinsic Delaunay flip loop ran out of its flip budget
+    /// ([`IntrinsicOptions::max_flips_per_edge`] per interior edge): a numerical cycle of
+    /// flips. Fix: raise the budget or the Delaunay tolerance, or use the plain cotangent
+    /// Laplacian.
+    #[error("intrinsic Delaunay flips did not finish: {flips} flips reached the limit {limit}")]
+    FlipLimit {
+        /// Flips performed.
+        flips: usize,
+        /// The budget.
+        limit: usize,
+    },
+    /// An option is out of range. Fix: see the option's documentation for its range.
+    #[error("invalid option {name}: {reason}")]
+    InvalidOption {
+        /// The option.
+        name: &'static str,
+        /// What is required.
+        reason: &'static str,
     },
     /// The backend failed for another reason (e.g. out of memory).
     #[error("sparse factorization failed: {0}")]
