@@ -142,10 +142,93 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
     let o = conformap(&["disk", s(&fixture("spot.obj")), "-o", s(&out)]);
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("closed genus-0"));
-    let o = conformap(&["disk", s(&fixture("halftunnel.obj")), "-o", s(&out)]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("3 boundary loops"));
     assert!(!out.exists());
+    // several boundary loops are no longer refused: the disk with circular holes
+    let rep = d.join("h.json");
+    let o = conformap(&[
+        "disk",
+        s(&fixture("halftunnel.obj")),
+        "-o",
+        s(&out),
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.exists());
+    let r = json(&rep);
+    assert_eq!(r["method"], "koebe");
+    assert!(r["metrics"]["circle_residual_max"].as_f64().unwrap() < 1e-6);
+}
+
+#[test]
+fn several_loops_map_onto_a_disk_with_circular_holes() {
+    let d = tmpdir("holes");
+    let (out, flat, rep) = (d.join("uv.obj"), d.join("flat.obj"), d.join("r.json"));
+    let o = conformap(&[
+        "disk",
+        s(&fixture("halftunnel.obj")),
+        "-o",
+        s(&out),
+        "--flat",
+        s(&flat),
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = json(&rep);
+    assert_eq!(r["input"]["boundaries"], 3);
+    let solver = &r["solver"];
+    assert_eq!(solver["converged"], true);
+    assert!(solver["iterations"].as_u64().unwrap() >= 1);
+    let history = solver["residual_history"].as_array().unwrap();
+    assert_eq!(history.len() as u64, solver["sweeps"].as_u64().unwrap() + 1);
+    assert!(solver["step_history"].as_array().unwrap().len() >= 3);
+    assert!(solver["polish"]["energy_history"].as_array().unwrap().len() >= 2);
+    // every loop on its circle; the outer one (the longest, 48 vertices) the unit circle
+    let domain = &r["circle_domain"];
+    assert_eq!(domain["outer_loop"], 0);
+    assert!(domain["modulus"].is_null());
+    let circles = domain["circles"].as_array().unwrap();
+    assert_eq!(circles.len(), 3);
+    for c in circles {
+        assert!(c["residual_max"].as_f64().unwrap() < 1e-6, "{c}");
+        assert!(c["radius"].as_f64().unwrap() > 0.0);
+    }
+    assert_eq!(circles[0]["outer"], true);
+    assert_eq!(circles[0]["vertices"], 48);
+    let m = &r["metrics"];
+    assert!(m["circle_residual_max"].as_f64().unwrap() < 1e-6);
+    assert!(m["conformal_energy"].as_f64().unwrap() > 0.0);
+    assert!(m["angle_distortion_deg"]["mean"].as_f64().unwrap() > 0.0);
+    // the metrics command agrees on the flat mesh (the outer loop given explicitly)
+    let o = conformap(&["metrics", s(&fixture("halftunnel.obj")), s(&flat), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // --outer picks another loop; a loop that does not exist is a usage error
+    let rep2 = d.join("r2.json");
+    let o = conformap(&[
+        "disk",
+        s(&fixture("halftunnel.obj")),
+        "-o",
+        s(&out),
+        "--outer",
+        "2",
+        "--report",
+        s(&rep2),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r2 = json(&rep2);
+    assert_eq!(r2["circle_domain"]["outer_loop"], 2);
+    assert_eq!(r2["circle_domain"]["circles"][2]["outer"], true);
+    let o = conformap(&[
+        "disk",
+        s(&fixture("halftunnel.obj")),
+        "-o",
+        s(&out),
+        "--outer",
+        "3",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--outer 3"));
 }
 
 #[test]

@@ -7,6 +7,9 @@
 //! ([`harmonic_arc_length`], [`cem`], [`ccem`]) then reuse that factorization.
 //! [`compute_disk_map`] does both for a [`DiskMethod`]; the default, CCEM with BFGS
 //! ([`DiskMethod::CcemQn`]), gives the most conformal map (lowest `E_C`) of the four.
+//! [`koebe`] maps a genus-0 mesh with several boundary loops onto the unit disk with
+//! circular holes (CEM §3.3, Algorithm 2: Koebe's iteration, then the circle-domain map of
+//! least conformal energy).
 //!
 //! # Example
 //! ```
@@ -39,11 +42,19 @@ mod ccem_options;
 #[cfg(test)]
 mod ccem_tests;
 mod cem;
+mod circle_fit;
+mod circle_newton;
+mod circle_polish;
 mod descent;
 mod energy;
 mod error;
 mod harmonic;
 mod initial;
+mod koebe;
+mod koebe_options;
+mod koebe_polish;
+mod koebe_report;
+mod koebe_step;
 mod laplacian_choice;
 mod line_search;
 mod method;
@@ -67,6 +78,15 @@ pub use harmonic::harmonic_arc_length;
 pub use initial::{
     angenent_boundary, angenent_rhs, arc_length_boundary, centralize_normalize, centre_face,
     InitialBoundary,
+};
+pub use koebe::koebe;
+pub use koebe_options::{
+    KoebeError, KoebeOptions, KOEBE_MAX_SWEEPS, KOEBE_NEWTON_MAX_ITER, KOEBE_NEWTON_STEP_TOL,
+    KOEBE_TOL, KOEBE_TOL_WITHOUT_POLISH,
+};
+pub use koebe_polish::POLISH_MAX_ITER;
+pub use koebe_report::{
+    CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
 };
 pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};

@@ -23,11 +23,13 @@
 //! ```
 
 mod error;
+mod holes;
 mod repair;
 mod surgery;
 mod trimesh;
 
 pub use error::MeshError;
+pub use holes::{centroid_fan_faces, fill_all_holes_except};
 pub use repair::{repair, RepairError, RepairLog, RepairOptions, Repaired, DROPPED};
 pub use surgery::{fill_holes, FilledMesh};
 pub use trimesh::{

@@ -47,7 +47,8 @@ impl Method {
 /// Arguments of `conformap disk`.
 #[derive(Debug, Args)]
 pub struct DiskArgs {
-    /// The mesh (.obj, .gltf, .glb): one boundary loop, genus 0.
+    /// The mesh (.obj, .gltf, .glb): genus 0 with one boundary loop (the unit disk) or
+    /// several (the unit disk with circular holes, by Koebe's iteration).
     pub mesh: PathBuf,
     /// Output mesh with texture coordinates vt = ((u+1)/2, (v+1)/2) (.obj, .gltf, .glb).
     #[arg(short, long)]
@@ -55,10 +56,16 @@ pub struct DiskArgs {
     /// Method.
     #[arg(long, value_enum, default_value_t = Method::CcemQn)]
     pub method: Method,
-    /// Iteration cap (default: CCEM 1000, CEM 20 as in the papers).
+    /// With several boundary loops: the loop (0-based, as `conformap info` lists them) mapped
+    /// onto the unit circle. Default: the longest.
+    #[arg(long, value_name = "K")]
+    pub outer: Option<usize>,
+    /// Iteration cap (default: CCEM 1000, CEM 20 as in the papers; several loops: Koebe
+    /// sweeps, 200).
     #[arg(long)]
     pub max_iter: Option<usize>,
-    /// Relative energy tolerance (default: CCEM 1e-9, CEM 1e-6).
+    /// Relative energy tolerance (default: CCEM 1e-9, CEM 1e-6; several loops: the circle
+    /// residual ending the Koebe sweeps, 1e-4, before the polish makes the circles exact).
     #[arg(long)]
     pub tol: Option<f64>,
     /// Also write the raw map as a flat mesh (u, v, 0).
@@ -169,6 +176,10 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
     let mesh = &input.mesh;
     let read_ms = ms_since(t);
     let memory = memory.before_solving(mesh).map_err(in_mesh_file)?;
+    if let Some(done) = super::disk_holes::dispatch(args, &input, read_ms, memory, t_all) {
+        // genus 0 with several boundary loops: the disk with circular holes
+        return done;
+    }
 
     let in_file = |e: conformap_disk::DiskError| Failure::from(e).in_file(&args.mesh);
     let mut problem = DiskProblem::new(mesh).map_err(in_file)?;
@@ -258,7 +269,7 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
 }
 
 /// Writes the repaired → input vertex map, one 0-based input vertex per line.
-fn write_vertex_map(path: &Path, log: &RepairLog) -> Result<(), Failure> {
+pub(crate) fn write_vertex_map(path: &Path, log: &RepairLog) -> Result<(), Failure> {
     let mut text = String::with_capacity(8 * log.vertex_to_input.len());
     for v in &log.vertex_to_input {
         text.push_str(&v.to_string());
@@ -343,7 +354,7 @@ impl MemoryCheck {
 
     /// The `memory` object of a report. `limit_bytes` and `peak_rss_bytes` are measurements
     /// of the machine and the run (like timings), not of the input.
-    fn to_json(self) -> serde_json::Value {
+    pub(crate) fn to_json(self) -> serde_json::Value {
         json!({
             "estimated_peak_bytes": self.estimate,
             "limit_bytes": self.limit.map(|l| l.0),

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod disk;
+pub mod disk_holes;
 pub mod info;
 pub mod metrics;
 

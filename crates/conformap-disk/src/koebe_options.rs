@@ -1,0 +1,212 @@
+//! Options and errors of [`crate::koebe`], each option with its default and why.
+
+use conformap_mesh::{MeshError, Topology};
+use conformap_operators::OperatorError;
+
+use crate::{CemOptions, DiskError};
+
+/// Default stopping tolerance of the Koebe sweeps: stop after the first sweep whose worst
+/// circle residual `max ||f − c| − r| / r` (over every loop's vertices, against its best-fit
+/// circle) is at most `1e-4`. The polish that follows puts every loop on its circle to
+/// rounding and needs only a start near its minimizer (its result is the same from `1e-2`
+/// or `1e-8`, measured on the class-b meshes); the iteration converges linearly, so each
+/// further decade costs about one more sweep. With the polish off, use
+/// [`KOEBE_TOL_WITHOUT_POLISH`].
+pub const KOEBE_TOL: f64 = 1e-4;
+/// The tolerance to use with [`KoebeOptions::polish`] off: `1e-8`, a hundred times below
+/// the `1e-6` the maps are judged by, so the final normalization (which moves the holes)
+/// leaves the residual well inside it.
+pub const KOEBE_TOL_WITHOUT_POLISH: f64 = 1e-8;
+/// Default cap on Koebe sweeps (one sweep maps once with each loop open): `200`. The
+/// iteration converges linearly at a rate set by how close the holes are to each other
+/// (Zeng et al.); the test meshes need far fewer, so the cap only ends a stalled run, which
+/// the report then marks as not converged.
+pub const KOEBE_MAX_SWEEPS: usize = 200;
+/// Default Newton iteration cap of one Koebe step: `50`. Steps after the first sweep start
+/// next to their minimizer and take 1–4 iterations; the first ones, from a rough start,
+/// up to about 15.
+pub const KOEBE_NEWTON_MAX_ITER: usize = 50;
+/// Default Newton step tolerance, radians: a step ends once a full Newton step moves no
+/// boundary angle by more than `1e-11` (quadratic convergence leaves an error far below
+/// that, and `1e-11` is about `1e5` units in the last place of `2π`).
+pub const KOEBE_NEWTON_STEP_TOL: f64 = 1e-11;
+
+/// Options of [`crate::koebe`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct KoebeOptions {
+    /// Boundary loop (index into `mesh.boundary_loops()`) that becomes the unit circle.
+    /// Default: `None`, the longest loop (ties: the first), as `conformap disk` chooses.
+    pub outer: Option<usize>,
+    /// Stop the sweeps once the worst circle residual after a sweep is at most this.
+    /// Default: [`KOEBE_TOL`] (1e-4; [`KOEBE_TOL_WITHOUT_POLISH`] without the polish).
+    pub tol: f64,
+    /// Sweep cap. Default: [`KOEBE_MAX_SWEEPS`] (200).
+    pub max_sweeps: usize,
+    /// Newton iteration cap per step. Default: [`KOEBE_NEWTON_MAX_ITER`] (50).
+    pub newton_max_iter: usize,
+    /// Newton step tolerance, radians. Default: [`KOEBE_NEWTON_STEP_TOL`] (1e-11).
+    pub newton_step_tol: f64,
+    /// CEM options of the first map (CEM Algorithm 2, step 3: the surface with every hole
+    /// filled, on [`crate::DiskProblem::new`]). Default: [`CemOptions::DEFAULT`] (the
+    /// paper's 20 iterations).
+    pub initial: CemOptions,
+    /// End with the circle-domain energy minimization (see [`crate::koebe`], step 5).
+    /// Default: `true`.
+    pub polish: bool,
+}
+
+impl KoebeOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        outer: None,
+        tol: KOEBE_TOL,
+        max_sweeps: KOEBE_MAX_SWEEPS,
+        newton_max_iter: KOEBE_NEWTON_MAX_ITER,
+        newton_step_tol: KOEBE_NEWTON_STEP_TOL,
+        initial: CemOptions::DEFAULT,
+        polish: true,
+    };
+
+    /// Sets [`Self::outer`].
+    #[must_use]
+    pub fn with_outer(mut self, outer: Option<usize>) -> Self {
+        self.outer = outer;
+        self
+    }
+
+    /// Sets [`Self::tol`].
+    #[must_use]
+    pub fn with_tol(mut self, tol: f64) -> Self {
+        self.tol = tol;
+        self
+    }
+
+    /// Sets [`Self::max_sweeps`].
+    #[must_use]
+    pub fn with_max_sweeps(mut self, max_sweeps: usize) -> Self {
+        self.max_sweeps = max_sweeps;
+        self
+    }
+
+    /// Sets [`Self::newton_max_iter`] and [`Self::newton_step_tol`].
+    #[must_use]
+    pub fn with_newton(mut self, max_iter: usize, step_tol: f64) -> Self {
+        self.newton_max_iter = max_iter;
+        self.newton_step_tol = step_tol;
+        self
+    }
+
+    /// Sets [`Self::initial`].
+    #[must_use]
+    pub fn with_initial(mut self, initial: CemOptions) -> Self {
+        self.initial = initial;
+        self
+    }
+
+    /// Sets [`Self::polish`].
+    #[must_use]
+    pub fn with_polish(mut self, polish: bool) -> Self {
+        self.polish = polish;
+        self
+    }
+
+    /// Checks the ranges: `tol ≥ 0` and finite, `max_sweeps ≥ 1`, `newton_max_iter ≥ 1`,
+    /// `newton_step_tol > 0` and finite.
+    ///
+    /// # Errors
+    /// [`KoebeError::InvalidOption`] naming the option.
+    pub fn validate(&self) -> Result<(), KoebeError> {
+        let bad = |name: &'static str, reason: &'static str| {
+            Err(KoebeError::InvalidOption { name, reason })
+        };
+        if !(self.tol >= 0.0 && self.tol.is_finite()) {
+            return bad("tol", "must be a finite number ≥ 0");
+        }
+        if self.max_sweeps == 0 {
+            return bad("max_sweeps", "must be at least 1");
+        }
+        if self.newton_max_iter == 0 {
+            return bad("newton_max_iter", "must be at least 1");
+        }
+        if !(self.newton_step_tol > 0.0 && self.newton_step_tol.is_finite()) {
+            return bad("newton_step_tol", "must be a finite number > 0");
+        }
+        Ok(())
+    }
+}
+
+impl Default for KoebeOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Why a disk-with-circular-holes map could not be computed.
+///
+/// (A separate enum from [`DiskError`], which it wraps, so that the Koebe method's own
+/// failures read in its own words.)
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum KoebeError {
+    /// The mesh is not a connected genus-0 surface with boundary, so no disk with circular
+    /// holes is conformally equivalent to it. Fix: closed genus-0 meshes map to the sphere;
+    /// higher-genus ones need cutting (or the global 1-form map); split several components.
+    #[error(
+        "a disk with circular holes needs a connected genus-0 surface with at least one \
+         boundary loop, but the mesh is {found}"
+    )]
+    NotGenusZero {
+        /// What the mesh is.
+        found: Topology,
+    },
+    /// The requested outer loop does not exist. Fix: loops are numbered from 0 in the order
+    /// of `conformap info` (by smallest vertex).
+    #[error("outer loop {index} does not exist: the mesh has {loops} boundary loops")]
+    OuterLoopOutOfRange {
+        /// The requested loop.
+        index: usize,
+        /// Number of loops.
+        loops: usize,
+    },
+    /// An option is out of range. Fix: see the option's documentation.
+    #[error("invalid option {name}: {reason}")]
+    InvalidOption {
+        /// The option.
+        name: &'static str,
+        /// What is required.
+        reason: &'static str,
+    },
+    /// Filling the holes of the input surface with centroid fans gave an invalid mesh (a
+    /// fan triangle is degenerate: a flat loop whose centroid lies on one of its edges).
+    #[error("filling the holes failed: {0}")]
+    Fill(#[from] MeshError),
+    /// The first disk map (CEM on the filled surface) failed.
+    #[error("the first disk map failed: {0}")]
+    Disk(#[from] DiskError),
+    /// A sparse factorization of a Koebe step failed (e.g. `L_II` of a folded planar image
+    /// is not positive definite).
+    #[error("linear algebra of a Koebe step failed: {0}")]
+    Operator(#[from] OperatorError),
+    /// No point inside a hole's current image was found to invert about: the loop's image
+    /// is not a simple polygon (the previous map folded it).
+    #[error(
+        "the image of boundary loop {loop_index} is not a simple closed curve (sweep {sweep}); \
+         the previous map folded it"
+    )]
+    LoopNotSimple {
+        /// The loop.
+        loop_index: usize,
+        /// The sweep (0 = the first disk map).
+        sweep: usize,
+    },
+    /// A non-finite value appeared at this vertex: the planar image has (numerically)
+    /// degenerate triangles, crowded below what f64 resolves.
+    #[error("the map became non-finite at vertex {vertex} ({stage})")]
+    NonFinite {
+        /// 0-based vertex index (of the filled mesh).
+        vertex: usize,
+        /// Which step produced it.
+        stage: &'static str,
+    },
+}
