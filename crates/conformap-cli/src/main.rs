@@ -13,6 +13,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
+use crate::commands::{mobius::MobiusArgs, sphere::SphereArgs};
 
 /// Conformal (angle-preserving) parameterization of triangle meshes.
 #[derive(Debug, Parser)]
@@ -30,6 +31,10 @@ enum Command {
     Disk(DiskArgs),
     /// Judge a planar map of a mesh (ours or another tool's).
     Metrics(MetricsArgs),
+    /// Conformal map of a closed genus-0 mesh onto the unit sphere.
+    Sphere(SphereArgs),
+    /// Optimal Möbius transformation of a disk or sphere map (uniformity or emphasized area).
+    Mobius(MobiusArgs),
 }
 
 fn main() -> ExitCode {
@@ -38,6 +43,8 @@ fn main() -> ExitCode {
         Command::Info(args) => commands::info::run(&args),
         Command::Disk(args) => commands::disk::run(&args),
         Command::Metrics(args) => commands::metrics::run(&args),
+        Command::Sphere(args) => commands::sphere::run(&args),
+        Command::Mobius(args) => commands::mobius::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,6 +4,8 @@ pub mod disk;
 pub mod disk_holes;
 pub mod info;
 pub mod metrics;
+pub mod mobius;
+pub mod sphere;
 
 use std::path::Path;
 

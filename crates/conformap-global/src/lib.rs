@@ -1,0 +1,97 @@
+//! Sphere maps and Möbius optimization for conformap: genus-0 closed surfaces, double
+//! covering, optimal Möbius transforms.
+//!
+//! Depends on `conformap-mesh` (validated meshes), `conformap-operators` (cotangent
+//! Laplacian, sparse Cholesky) and `conformap-disk` (Angenent's dipole right-hand side, and
+//! the harmonic extension used by the double-cover route); never touches files, never
+//! prints, and owns no planar-map metric (those are `conformap-metrics`').
+//!
+//! # Contents
+//! - **Sphere maps** of closed genus-0 meshes: [`sphere_map`] (Angenent's map, inverse
+//!   stereographic projection, harmonic corrections in the opposite chart) →
+//!   [`SphereMap`], configured by [`SphereOptions`], judged by [`sphere_metrics`] →
+//!   [`SphereMetrics`] (radius residual, inverted faces, chord-angle distortion, Beltrami
+//!   `|μ|` in stereographic charts, area distortion, uniformity energy, Möbius-invariant
+//!   cross-ratio distortion).
+//! - **Möbius maps**: [`Mobius`] (`(az + b)/(cz + d)`, `ad − bc = 1`, acting on the sphere
+//!   through [`stereographic`]) and [`DiskAutomorphism`] (`(az + b)/(b̄z + ā)`); their
+//!   optimization for the uniformity or emphasized-area energies of Jin et al. (2004, §3.4):
+//!   [`optimize_sphere_mobius`], [`optimize_disk_mobius`] with [`MobiusObjective`] and
+//!   [`MobiusOptions`] → [`MobiusReport`].
+//! - **Double covering** of a disk mesh: [`double_cover`], and the disk map through it,
+//!   [`double_cover_disk_map`] — a second route to the disk map, independent of CEM.
+//! - Energies on their own: [`sphere_uniformity_energy`], [`disk_uniformity_energy`],
+//!   [`sphere_region_share`], [`disk_region_share`], [`region_mask`].
+//! - [`GlobalError`]: the one error type.
+//!
+//! # Example
+//! ```
+//! use conformap_global::{
+//!     optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective, MobiusOptions,
+//!     SphereOptions,
+//! };
+//! # let mesh = conformap_global::doc_support::octahedron_sphere(3);
+//! // `mesh`: a closed genus-0 mesh (here an ellipsoid of 258 vertices)
+//! let map = sphere_map(&mesh, &SphereOptions::DEFAULT)?;
+//! let before = sphere_metrics(&mesh, &map.points)?;
+//! assert!(before.radius_residual_max < 1e-12);
+//! assert_eq!(before.flipped_faces, 0);
+//! // the Möbius map that spreads area most evenly: lower energy, same conformality
+//! let best = optimize_sphere_mobius(&mesh, &map.points, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
+//! let after = sphere_metrics(&mesh, &best.points)?;
+//! assert!(after.uniformity_energy < before.uniformity_energy);
+//! assert!((after.cross_ratio_log.mean_abs - before.cross_ratio_log.mean_abs).abs() < 1e-12);
+//! # Ok::<(), conformap_global::GlobalError>(())
+//! ```
+
+mod double_cover;
+mod energy;
+mod error;
+mod metrics;
+mod mobius;
+mod newton;
+mod objective;
+mod optimize;
+mod report;
+mod sphere;
+mod stats;
+mod stereo;
+
+#[doc(hidden)]
+pub mod doc_support;
+
+pub use double_cover::{
+    double_cover, double_cover_disk_map, DoubleCover, DoubleCoverDisk, DoubleCoverReport,
+};
+pub use energy::{
+    disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
+    sphere_uniformity_energy, surface_shares,
+};
+pub use error::GlobalError;
+pub use metrics::{
+    planar_cross_ratio_distortion, sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics,
+    SPHERE_BELTRAMI_CAP,
+};
+pub use mobius::{
+    boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,
+};
+pub use optimize::{
+    optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusObjective, MobiusOptions,
+    MobiusReport, SphereMobius, StartRecord, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL,
+    MOBIUS_MAX_BOOST, MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
+};
+pub use report::{SphereReport, StageRecord, Timings};
+pub use sphere::{
+    sphere_map, sphere_source_face, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION,
+    SPHERE_MAX_CORRECTIONS, SPHERE_MIN_GAIN,
+};
+pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
+pub use stereo::{
+    equirectangular_uv, inverse_stereographic, inverse_stereographic_south, stereographic,
+    stereographic_south,
+};
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -1,0 +1,579 @@
+//! Optimal Möbius transformations of a sphere or disk map (Jin et al. 2004, §3.4) for the
+//! uniformity energy (Eq. 1–2, 7) or the emphasized area (Eq. 3–4, 8, 10).
+//!
+//! Rotations change no area, and every Möbius map of the sphere (of the disk) is a rotation
+//! after a boost, so both energies depend only on the boost: `u ∈ ℝ³` for the sphere
+//! ([`Mobius::boost`]), `v ∈ ℝ²` for the disk ([`DiskAutomorphism::from_vector`]). The
+//! optimizer is a damped Newton method on that vector — analytic gradient, Hessian by
+//! central differences of it, Levenberg damping, Armijo acceptance — run from several
+//! starts; the best local optimum wins, and the given map (`u = 0`) is always one start, so
+//! the energy never rises.
+//!
+//! **The emphasized area has no maximizer.** A boost towards a point inside the region
+//! stretches a small disk around that point over almost the whole sphere (or disk), so the
+//! region's share of the image area tends to 1 as the boost length grows, without reaching
+//! it. The optimization is therefore done over boosts whose own largest area magnification
+//! `e^{2|u|}` is at most [`MobiusOptions::max_area_scale`] (default
+//! [`EMPHASIZE_MAX_AREA_SCALE`]), and the report says whether that cap is active (it
+//! normally is: the optimum is then found by Newton's method on the cap's sphere).
+//! [`MobiusObjective::EmphasizeDensity`] is a well-posed alternative with an interior
+//! optimum: the region's mean log area magnification.
+
+use std::time::Instant;
+
+use conformap_mesh::TriMesh;
+use num_complex::Complex64;
+use serde::{Deserialize, Serialize};
+
+use crate::energy::{
+    check_len, planar_face_areas, region_mask, region_share_from_areas, sphere_face_areas,
+    surface_shares, uniformity_from_areas,
+};
+use crate::mobius::{DiskAutomorphism, Mobius, MobiusCoefficients};
+use crate::newton::{minimize, EvalFn, NewtonSettings};
+use crate::objective::{DiskProblemM, SphereProblem, Target};
+use crate::stereo::{norm, normalize};
+use crate::GlobalError;
+
+/// Default Newton iteration cap per start: 100. Starts converge in 5–15 iterations on the
+/// meshes measured; the cap only stops a start crawling along the ball's boundary.
+pub const MOBIUS_MAX_ITER: usize = 100;
+
+/// Default step tolerance: stop a start when an accepted step moves the boost by less than
+/// `1e-9` (hyperbolic length), i.e. areas change by a relative 2e-9.
+pub const MOBIUS_STEP_TOL: f64 = 1e-9;
+
+/// Default hyperbolic length of the non-zero starts: 1 (area magnification `e² ≈ 7.4` at
+/// the boost's centre), far enough to leave the basin of `u = 0` if there is another.
+pub const MOBIUS_START_RADIUS: f64 = 1.0;
+
+/// Default cap on the boost length for the uniformity energy: 15 (area magnification
+/// `e³⁰ ≈ 1e13`); the optimum is far inside, the cap only keeps f64 meaningful.
+pub const MOBIUS_MAX_BOOST: f64 = 15.0;
+
+/// Default cap on the largest area magnification `e^{2|u|}` of the boost when emphasizing a
+/// region: 10 (boost length `½ ln 10 ≈ 1.15`; no face grows or shrinks by more than 10×
+/// through the Möbius map). Without a cap the emphasized share tends to 1 and the boost to
+/// infinity (see the module docs); the share at the optimum is set by the cap — measured on
+/// spot's and david_head's halves: cap 5 → 84–85 %, 10 → 91–92 %, 100 → 99 %, 10⁴ → 99.9 %.
+pub const EMPHASIZE_MAX_AREA_SCALE: f64 = 10.0;
+
+/// Largest `||x| − 1|` accepted for a given sphere map, and `|z| − 1` for a disk map: 1e-6.
+/// Maps stored as f32 (glTF) carry ~1e-7 of rounding; anything farther is not such a map.
+pub const MAP_RADIUS_TOL: f64 = 1e-6;
+
+/// The area energy a Möbius transformation is chosen for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MobiusObjective {
+    /// Minimize the uniformity energy `Σ (a_f − s_f)²` (Eq. 1–2, 7; §3.4).
+    Uniform,
+    /// Maximize the image-area share of these faces (Eq. 3–4, 8, 10), with the boost capped
+    /// by [`MobiusOptions::max_area_scale`]. Repeated indices count once.
+    Emphasize {
+        /// 0-based face indices.
+        region: Vec<usize>,
+    },
+    /// Maximize the region's mean log area magnification
+    /// `Σ_{f ∈ D} s_f log(a_f / s_f) / Σ_{f ∈ D} s_f` (the log of its geometric-mean sampling
+    /// density): a well-posed variant of [`Self::Emphasize`] with an interior optimum, since
+    /// the faces of the region far from the boost's centre shrink without bound. Not in the
+    /// paper; no cap needed (the uniformity cap [`MobiusOptions::max_boost`] applies).
+    EmphasizeDensity {
+        /// 0-based face indices.
+        region: Vec<usize>,
+    },
+}
+
+impl MobiusObjective {
+    fn name(&self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::Emphasize { .. } => "emphasize",
+            Self::EmphasizeDensity { .. } => "emphasize-density",
+        }
+    }
+}
+
+/// Options of [`optimize_sphere_mobius`] and [`optimize_disk_mobius`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct MobiusOptions {
+    /// Newton iterations per start. Default: [`MOBIUS_MAX_ITER`].
+    pub max_iter: usize,
+    /// Step tolerance. Default: [`MOBIUS_STEP_TOL`].
+    pub step_tol: f64,
+    /// Length of the non-zero starts. Default: [`MOBIUS_START_RADIUS`].
+    pub start_radius: f64,
+    /// Run the extra starts (`false`: only `u = 0`). Default: `true`: `u = 0` and the
+    /// `±` axis directions at [`Self::start_radius`] (7 starts on the sphere, 5 on the
+    /// disk). On every mesh measured all starts reached the same optimum; they are a guard,
+    /// as the paper's random starts are.
+    pub multi_start: bool,
+    /// Cap on the boost length for [`MobiusObjective::Uniform`]. Default:
+    /// [`MOBIUS_MAX_BOOST`].
+    pub max_boost: f64,
+    /// Cap on the boost's own largest area magnification for
+    /// [`MobiusObjective::Emphasize`]. Default: [`EMPHASIZE_MAX_AREA_SCALE`]; must be > 1.
+    pub max_area_scale: f64,
+}
+
+impl MobiusOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        max_iter: MOBIUS_MAX_ITER,
+        step_tol: MOBIUS_STEP_TOL,
+        start_radius: MOBIUS_START_RADIUS,
+        multi_start: true,
+        max_boost: MOBIUS_MAX_BOOST,
+        max_area_scale: EMPHASIZE_MAX_AREA_SCALE,
+    };
+
+    /// Sets [`Self::max_iter`].
+    #[must_use]
+    pub fn with_max_iter(mut self, n: usize) -> Self {
+        self.max_iter = n;
+        self
+    }
+
+    /// Sets [`Self::multi_start`].
+    #[must_use]
+    pub fn with_multi_start(mut self, on: bool) -> Self {
+        self.multi_start = on;
+        self
+    }
+
+    /// Sets [`Self::start_radius`].
+    #[must_use]
+    pub fn with_start_radius(mut self, r: f64) -> Self {
+        self.start_radius = r;
+        self
+    }
+
+    /// Sets [`Self::max_area_scale`].
+    #[must_use]
+    pub fn with_max_area_scale(mut self, s: f64) -> Self {
+        self.max_area_scale = s;
+        self
+    }
+
+    /// Sets [`Self::max_boost`].
+    #[must_use]
+    pub fn with_max_boost(mut self, t: f64) -> Self {
+        self.max_boost = t;
+        self
+    }
+
+    /// Sets [`Self::step_tol`].
+    #[must_use]
+    pub fn with_step_tol(mut self, tol: f64) -> Self {
+        self.step_tol = tol;
+        self
+    }
+}
+
+impl Default for MobiusOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// One start of the optimizer.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct StartRecord {
+    /// The starting boost vector.
+    pub start: Vec<f64>,
+    /// The objective at the local optimum found: the uniformity energy, the region's share
+    /// (`emphasize`) or its mean log area magnification (`emphasize-density`).
+    pub energy: f64,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Whether it stopped on the step tolerance (not the iteration cap).
+    pub converged: bool,
+}
+
+/// What the Möbius optimization did and achieved.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct MobiusReport {
+    /// `"uniform"`, `"emphasize"` or `"emphasize-density"`.
+    pub objective: String,
+    /// `"sphere"` or `"disk"`.
+    pub domain: String,
+    /// Uniformity energy of the given map.
+    pub uniformity_before: f64,
+    /// Uniformity energy of the returned map.
+    pub uniformity_after: f64,
+    /// Image-area share of the emphasized region before (`None` for `uniform`).
+    pub region_share_before: Option<f64>,
+    /// Image-area share of the emphasized region after (`None` for `uniform`).
+    pub region_share_after: Option<f64>,
+    /// Surface-area share of the emphasized region (`None` for `uniform`).
+    pub region_surface_share: Option<f64>,
+    /// The optimal boost vector (`u ∈ ℝ³` or `v ∈ ℝ²`).
+    pub boost: Vec<f64>,
+    /// Its hyperbolic length `|u|`.
+    pub boost_length: f64,
+    /// The boost's own largest area magnification `e^{2|u|}`.
+    pub max_area_scale: f64,
+    /// Whether the optimum lies on the cap of the boost length.
+    pub cap_active: bool,
+    /// The optimal map as Möbius coefficients (`ad − bc = 1`; for the disk `c = b̄, d = ā`).
+    pub mobius: MobiusCoefficients,
+    /// Every start.
+    pub starts: Vec<StartRecord>,
+    /// Index into `starts` of the optimum.
+    pub best_start: usize,
+    /// Energy-and-gradient evaluations, all starts.
+    pub evaluations: usize,
+    /// Whether the best start converged.
+    pub converged: bool,
+    /// Wall-clock milliseconds.
+    pub time_ms: f64,
+}
+
+/// A sphere map moved by its optimal Möbius transformation.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct SphereMobius {
+    /// The moved map, unit vectors.
+    pub points: Vec<[f64; 3]>,
+    /// The Möbius map applied (through stereographic projection: `τ⁻¹ ∘ μ ∘ τ`).
+    pub mobius: Mobius,
+    /// The report.
+    pub report: MobiusReport,
+}
+
+/// A disk map moved by its optimal automorphism.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct DiskMobius {
+    /// The moved map.
+    pub map: Vec<Complex64>,
+    /// The automorphism applied.
+    pub automorphism: DiskAutomorphism,
+    /// The report.
+    pub report: MobiusReport,
+}
+
+fn starts(dim: usize, radius: f64, multi: bool) -> Vec<Vec<f64>> {
+    let mut out = vec![vec![0.0; dim]];
+    if !multi {
+        return out;
+    }
+    for k in 0..dim {
+        for s in [1.0, -1.0] {
+            let mut u = vec![0.0; dim];
+            u[k] = s * radius;
+            out.push(u);
+        }
+    }
+    out
+}
+
+struct Prepared {
+    shares: Vec<f64>,
+    mask: Option<Vec<bool>>,
+    /// The objective is the log density, not the share.
+    density: bool,
+    radius: f64,
+}
+
+impl Prepared {
+    fn target(&self) -> Target<'_> {
+        match (&self.mask, self.density) {
+            (Some(m), true) => Target::EmphasizeDensity(m, &self.shares),
+            (Some(m), false) => Target::Emphasize(m),
+            (None, _) => Target::Uniform(&self.shares),
+        }
+    }
+}
+
+fn prepare(
+    mesh: &TriMesh,
+    objective: &MobiusObjective,
+    options: &MobiusOptions,
+) -> Result<Prepared, GlobalError> {
+    if !(options.start_radius >= 0.0 && options.start_radius.is_finite()) {
+        return Err(GlobalError::InvalidOption {
+            name: "start_radius",
+            reason: "must be a finite number ≥ 0",
+        });
+    }
+    if !(options.step_tol > 0.0) {
+        return Err(GlobalError::InvalidOption {
+            name: "step_tol",
+            reason: "must be positive",
+        });
+    }
+    let shares = surface_shares(mesh);
+    let check_boost = || {
+        if options.max_boost > 0.0 && options.max_boost.is_finite() {
+            Ok(options.max_boost)
+        } else {
+            Err(GlobalError::InvalidOption {
+                name: "max_boost",
+                reason: "must be a positive finite number",
+            })
+        }
+    };
+    let (mask, radius) = match objective {
+        MobiusObjective::EmphasizeDensity { region } => {
+            (Some(region_mask(mesh.num_faces(), region)?), check_boost()?)
+        }
+        MobiusObjective::Uniform => {
+            if !(options.max_boost > 0.0 && options.max_boost.is_finite()) {
+                return Err(GlobalError::InvalidOption {
+                    name: "max_boost",
+                    reason: "must be a positive finite number",
+                });
+            }
+            (None, options.max_boost)
+        }
+        MobiusObjective::Emphasize { region } => {
+            if !(options.max_area_scale > 1.0 && options.max_area_scale.is_finite()) {
+                return Err(GlobalError::InvalidOption {
+                    name: "max_area_scale",
+                    reason: "must be a finite number > 1",
+                });
+            }
+            (
+                Some(region_mask(mesh.num_faces(), region)?),
+                0.5 * options.max_area_scale.ln(),
+            )
+        }
+    };
+    Ok(Prepared {
+        shares,
+        mask,
+        density: matches!(objective, MobiusObjective::EmphasizeDensity { .. }),
+        radius,
+    })
+}
+
+/// Runs the starts and returns the best local minimum, its index and the records.
+fn run_starts(
+    eval: &EvalFn<'_>,
+    dim: usize,
+    radius: f64,
+    options: &MobiusOptions,
+    emphasize: bool,
+) -> (Vec<f64>, usize, Vec<StartRecord>, usize, bool) {
+    let settings = NewtonSettings {
+        max_iter: options.max_iter,
+        step_tol: options.step_tol,
+        radius,
+    };
+    let start_r = options.start_radius.min(0.5 * radius);
+    let mut records = Vec::new();
+    let mut best: Option<(f64, Vec<f64>, usize, bool)> = None;
+    let mut evaluations = 0;
+    for (k, x0) in starts(dim, start_r, options.multi_start)
+        .into_iter()
+        .enumerate()
+    {
+        let r = minimize(eval, &x0, &settings);
+        evaluations += r.evaluations;
+        records.push(StartRecord {
+            start: x0,
+            energy: if emphasize { -r.f } else { r.f },
+            iterations: r.iterations,
+            converged: r.converged,
+        });
+        if best.as_ref().is_none_or(|b| r.f < b.0) {
+            best = Some((r.f, r.x, k, r.converged));
+        }
+    }
+    let (_, x, k, conv) = best.unwrap_or((0.0, vec![0.0; dim], 0, false));
+    (x, k, records, evaluations, conv)
+}
+
+/// The Möbius transformation of the sphere that optimizes `objective` for the sphere map
+/// `points` of `mesh` (Jin et al. 2004, §3.4, "topological sphere"), and the moved map.
+///
+/// # Errors
+/// [`GlobalError::MapLength`], [`GlobalError::NonFiniteMap`], [`GlobalError::NotOnSphere`]
+/// (a point farther than [`MAP_RADIUS_TOL`] from the unit sphere), the region errors of
+/// [`crate::region_mask`], [`GlobalError::InvalidOption`].
+///
+/// # Examples
+/// ```
+/// use conformap_global::{optimize_sphere_mobius, sphere_map, MobiusObjective, MobiusOptions, SphereOptions};
+/// # let mesh = conformap_global::doc_support::octahedron_sphere(2);
+/// let map = sphere_map(&mesh, &SphereOptions::DEFAULT)?;
+/// let best = optimize_sphere_mobius(&mesh, &map.points, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
+/// assert!(best.report.uniformity_after <= best.report.uniformity_before);
+/// # Ok::<(), conformap_global::GlobalError>(())
+/// ```
+pub fn optimize_sphere_mobius(
+    mesh: &TriMesh,
+    points: &[[f64; 3]],
+    objective: &MobiusObjective,
+    options: &MobiusOptions,
+) -> Result<SphereMobius, GlobalError> {
+    let t0 = Instant::now();
+    check_len(mesh, points.len())?;
+    for (v, p) in points.iter().enumerate() {
+        if !p.iter().all(|x| x.is_finite()) {
+            return Err(GlobalError::NonFiniteMap { vertex: v });
+        }
+        let r = norm(*p);
+        if !((r - 1.0).abs() <= MAP_RADIUS_TOL) {
+            return Err(GlobalError::NotOnSphere {
+                vertex: v,
+                radius: r,
+            });
+        }
+    }
+    let base: Vec<[f64; 3]> = points.iter().map(|p| normalize(*p)).collect();
+    let prep = prepare(mesh, objective, options)?;
+    let prob = SphereProblem {
+        points: &base,
+        faces: mesh.faces(),
+    };
+    let target = prep.target();
+    let eval = |x: &[f64]| prob.eval(x, target);
+    let (u, best_start, starts, evaluations, converged) =
+        run_starts(&eval, 3, prep.radius, options, prep.mask.is_some());
+    let moved: Vec<[f64; 3]> = prob.boosted(&u).into_iter().map(normalize).collect();
+    let mobius = Mobius::boost([u[0], u[1], u[2]]);
+    let areas_before = sphere_face_areas(mesh, &base);
+    let areas_after = sphere_face_areas(mesh, &moved);
+    let report = finish_report(
+        objective,
+        "sphere",
+        &prep,
+        (&areas_before, &areas_after),
+        u,
+        mobius.to_report(),
+        (starts, best_start, evaluations, converged),
+        t0,
+    );
+    Ok(SphereMobius {
+        points: moved,
+        mobius,
+        report,
+    })
+}
+
+/// The automorphism of the unit disk that optimizes `objective` for the disk map `map` of
+/// `mesh` (Jin et al. 2004, §3.4, "topological disk"), and the moved map.
+///
+/// # Errors
+/// [`GlobalError::MapLength`], [`GlobalError::NonFiniteMap`], [`GlobalError::NotInDisk`]
+/// (a point farther than [`MAP_RADIUS_TOL`] outside the unit circle), the region errors of
+/// [`crate::region_mask`], [`GlobalError::InvalidOption`].
+///
+/// # Examples
+/// ```
+/// use conformap_global::{optimize_disk_mobius, MobiusObjective, MobiusOptions};
+/// use num_complex::Complex64;
+/// # let mesh = conformap_testkit::flat_disk(8, 8);
+/// // a flat unit disk mesh, mapped by a disk automorphism that crowds it to one side
+/// let moved = conformap_global::DiskAutomorphism::from_vector([1.0, 0.5]);
+/// let map: Vec<Complex64> = mesh.positions().iter()
+///     .map(|p| moved.apply(Complex64::new(p[0], p[1]))).collect();
+/// let best = optimize_disk_mobius(&mesh, &map, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
+/// // the optimum undoes the crowding
+/// assert!(best.report.uniformity_after < 0.01 * best.report.uniformity_before);
+/// # Ok::<(), conformap_global::GlobalError>(())
+/// ```
+pub fn optimize_disk_mobius(
+    mesh: &TriMesh,
+    map: &[Complex64],
+    objective: &MobiusObjective,
+    options: &MobiusOptions,
+) -> Result<DiskMobius, GlobalError> {
+    let t0 = Instant::now();
+    check_len(mesh, map.len())?;
+    for (v, z) in map.iter().enumerate() {
+        if !(z.re.is_finite() && z.im.is_finite()) {
+            return Err(GlobalError::NonFiniteMap { vertex: v });
+        }
+        if !(z.norm() <= 1.0 + MAP_RADIUS_TOL) {
+            return Err(GlobalError::NotInDisk {
+                vertex: v,
+                radius: z.norm(),
+            });
+        }
+    }
+    let prep = prepare(mesh, objective, options)?;
+    let prob = DiskProblemM {
+        map,
+        faces: mesh.faces(),
+    };
+    let target = prep.target();
+    let eval = |x: &[f64]| prob.eval(x, target);
+    let (v, best_start, starts, evaluations, converged) =
+        run_starts(&eval, 2, prep.radius, options, prep.mask.is_some());
+    let moved = prob.moved(&v);
+    let automorphism = DiskAutomorphism::from_vector([v[0], v[1]]);
+    let areas_before = planar_face_areas(mesh, map);
+    let areas_after = planar_face_areas(mesh, &moved);
+    let report = finish_report(
+        objective,
+        "disk",
+        &prep,
+        (&areas_before, &areas_after),
+        v,
+        automorphism.to_mobius().to_report(),
+        (starts, best_start, evaluations, converged),
+        t0,
+    );
+    Ok(DiskMobius {
+        map: moved,
+        automorphism,
+        report,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish_report(
+    objective: &MobiusObjective,
+    domain: &str,
+    prep: &Prepared,
+    areas: (&[f64], &[f64]),
+    boost: Vec<f64>,
+    mobius: MobiusCoefficients,
+    run: (Vec<StartRecord>, usize, usize, bool),
+    t0: Instant,
+) -> MobiusReport {
+    let (before, after) = areas;
+    let len = boost.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (share_b, share_a, surf) = match &prep.mask {
+        Some(m) => (
+            Some(region_share_from_areas(before, m)),
+            Some(region_share_from_areas(after, m)),
+            Some(
+                prep.shares
+                    .iter()
+                    .zip(m)
+                    .filter(|(_, &k)| k)
+                    .map(|(s, _)| s)
+                    .sum(),
+            ),
+        ),
+        None => (None, None, None),
+    };
+    let (starts, best_start, evaluations, converged) = run;
+    MobiusReport {
+        objective: objective.name().to_string(),
+        domain: domain.to_string(),
+        uniformity_before: uniformity_from_areas(before, &prep.shares),
+        uniformity_after: uniformity_from_areas(after, &prep.shares),
+        region_share_before: share_b,
+        region_share_after: share_a,
+        region_surface_share: surf,
+        cap_active: len >= prep.radius * (1.0 - 1e-9),
+        boost_length: len,
+        max_area_scale: (2.0 * len).exp(),
+        boost,
+        mobius,
+        starts,
+        best_start,
+        evaluations,
+        converged,
+        time_ms: t0.elapsed().as_secs_f64() * 1e3,
+    }
+}
