@@ -4,7 +4,7 @@
 //!
 //! `cargo run --release -p conformap-disk --example disk_methods -- [--tol T]
 //! [--max-iter N] [--min-gap G] [--rho R] [--qn-memory M] [--schur dense|implicit]
-//! [--start arc|N] [--only cem|ccem|qn] [--table] [--steps K] [-v] MESH.obj...`
+//! [--start arc|angenent|N] [--no-precond] [--only cem|ccem|qn] [--table] [--steps K] [-v] MESH.obj...`
 //!
 //! A throwaway reader for plain `v`/`f` OBJ files (the meshes in `../shared/meshes`).
 use std::time::Instant;
@@ -57,11 +57,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let s = args.next().ok_or("start")?;
                 opts = opts.with_start(if s == "arc" {
                     CcemStart::ArcLength
+                } else if s == "angenent" {
+                    CcemStart::Angenent
                 } else {
                     CcemStart::Cem(CemOptions::DEFAULT.with_max_iter(s.parse()?))
                 });
             }
             "--only" => only = args.next(),
+            "--no-precond" => opts = opts.with_hessian_preconditioner(false),
             "-v" => verbose = true,
             "--table" => table = true,
             "--steps" => {

@@ -8,10 +8,14 @@ use num_complex::Complex64;
 
 use crate::angles::{largest_gap, min_gap, project_to_floor, unwrap_boundary};
 use crate::ccem_options::{CcemOptions, CcemStart, CcemVariant};
+use crate::cem::CemOptions;
 use crate::cem::{cem, interior_residual};
 use crate::descent::{Descent, Stop};
 use crate::energy::{evaluate, Eval};
-use crate::initial::arc_length_boundary;
+use crate::hessian::Preconditioner;
+use crate::initial::{
+    angenent_boundary, angenent_from_schur, angenent_rhs, arc_length_boundary, centre_face,
+};
 use crate::problem::DiskProblem;
 use crate::report::{BoundaryReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings};
 use crate::schur::Schur;
@@ -41,44 +45,99 @@ pub(crate) fn flipped_faces(mesh: &TriMesh, f: &[Complex64]) -> (usize, usize) {
 /// What the start produced.
 struct Start {
     boundary: Vec<Complex64>,
-    report: Option<SolverReport>,
     extra_factor_ms: f64,
-    /// Why the start is not the one asked for.
-    note: Option<String>,
+    /// Factorizations beyond the problem's own.
+    extra_factorizations: usize,
+    /// What the start was, for the notes.
+    note: String,
 }
 
-fn start_boundary(problem: &mut DiskProblem<'_>, start: &CcemStart) -> Result<Start, DiskError> {
-    let arc = |problem: &DiskProblem<'_>, note: Option<String>| Start {
+/// The arc-length start, with a note saying why it was used.
+fn arc_start(problem: &DiskProblem<'_>, why: Option<String>) -> Start {
+    Start {
         boundary: arc_length_boundary(problem.mesh(), &problem.partition().boundary),
-        report: None,
         extra_factor_ms: 0.0,
-        note,
+        extra_factorizations: 0,
+        note: why.unwrap_or_else(|| "started from the arc-length boundary".to_string()),
+    }
+}
+
+/// The CEM start (`CcemStart::Cem`): runs CEM with its own second factorization.
+fn cem_start(problem: &mut DiskProblem<'_>, o: &CemOptions) -> Result<Start, DiskError> {
+    match cem(problem, o) {
+        Ok(out) => {
+            let boundary = problem.partition().boundary_values(&out.map);
+            let extra = out.report.timings_ms.factor - problem.factor_ms;
+            let r = &out.report;
+            let note = format!(
+                "started from CEM ({} iterations, E_C = {:.6e})",
+                r.iterations,
+                r.energy_history
+                    .get(r.best_iteration)
+                    .copied()
+                    .unwrap_or(f64::NAN)
+            );
+            Ok(Start {
+                boundary,
+                extra_factorizations: out.report.factorizations.saturating_sub(1),
+                extra_factor_ms: extra.max(0.0),
+                note,
+            })
+        }
+        // CEM's own numerical failures (a boundary vertex collapsing to the centre on
+        // a tiny mesh) are no reason to give up: any ordered boundary is a start
+        Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
+            Ok(arc_start(
+                problem,
+                Some(format!(
+                    "CEM failed ({e}); started from the arc-length boundary"
+                )),
+            ))
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The Angenent start (`CcemStart::Angenent`): from the dense Schur complement when there
+/// is one (no further factorization), else by [`angenent_boundary`] (a second one).
+fn angenent_start(
+    problem: &DiskProblem<'_>,
+    schur: &Schur<'_, '_>,
+    face: usize,
+) -> Result<Start, DiskError> {
+    let out = match (schur.dense(), schur.coupling()) {
+        (Some(a), Some(c)) => angenent_from_schur(problem, face, a, c).map(|b| (b, 0)),
+        _ => angenent_boundary(problem).map(|b| (b, 1)),
     };
-    match start {
-        CcemStart::Cem(o) => match cem(problem, o) {
-            Ok(out) => {
-                let boundary = problem.partition().boundary_values(&out.map);
-                let extra = out.report.timings_ms.factor - problem.factor_ms;
-                Ok(Start {
-                    boundary,
-                    report: Some(out.report),
-                    extra_factor_ms: extra.max(0.0),
-                    note: None,
-                })
-            }
-            // CEM's own numerical failures (a boundary vertex collapsing to the centre on
-            // a tiny mesh) are no reason to give up: any ordered boundary is a start
-            Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
-                Ok(arc(
-                    problem,
-                    Some(format!(
-                        "CEM failed ({e}); started from the arc-length boundary"
-                    )),
-                ))
-            }
-            Err(e) => Err(e),
-        },
-        CcemStart::ArcLength => Ok(arc(problem, None)),
+    match out {
+        Ok((init, extra)) => Ok(Start {
+            note: format!(
+                "started from Angenent's map (source face {}{}{})",
+                init.face,
+                if init.conjugated {
+                    ", conjugated to preserve orientation"
+                } else {
+                    ""
+                },
+                if extra > 0 {
+                    ", with a second factorization"
+                } else {
+                    ", from the Schur complement"
+                },
+            ),
+            boundary: init.boundary,
+            extra_factor_ms: if extra > 0 { init.factor_ms } else { 0.0 },
+            extra_factorizations: extra,
+        }),
+        Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
+            Ok(arc_start(
+                problem,
+                Some(format!(
+                    "Angenent's map failed ({e}); started from the arc-length boundary"
+                )),
+            ))
+        }
+        Err(e) => Err(e),
     }
 }
 
@@ -137,22 +196,30 @@ fn start_boundary(problem: &mut DiskProblem<'_>, start: &CcemStart) -> Result<St
 pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<DiskMap, DiskError> {
     options.validate()?;
     let t0 = Instant::now();
-    let start = start_boundary(problem, &options.start)?;
-    let start_ms = t0.elapsed().as_secs_f64() * 1e3;
+    // the CEM start needs the problem mutably (its L_BB solver), so it runs first
+    let cem_first = match &options.start {
+        CcemStart::Cem(o) => Some(cem_start(problem, o)?),
+        _ => None,
+    };
+    let cem_ms = t0.elapsed().as_secs_f64() * 1e3;
     let problem: &DiskProblem<'_> = problem;
-    let mut notes = Vec::new();
-    match &start.report {
-        _ if start.note.is_some() => notes.extend(start.note.clone()),
-        Some(r) => notes.push(format!(
-            "started from CEM ({} iterations, E_C = {:.6e})",
-            r.iterations,
-            r.energy_history
-                .get(r.best_iteration)
-                .copied()
-                .unwrap_or(f64::NAN)
-        )),
-        None => notes.push("started from the arc-length boundary".to_string()),
-    }
+    let face = centre_face(problem.mesh());
+    let schur = match options.start {
+        CcemStart::Angenent => {
+            Schur::with_rhs(problem, options.schur, &angenent_rhs(problem.mesh(), face))
+        }
+        _ => Schur::new(problem, options.schur),
+    };
+    let t_start = Instant::now();
+    let start = match cem_first {
+        Some(s) => s,
+        None => match options.start {
+            CcemStart::Angenent => angenent_start(problem, &schur, face)?,
+            _ => arc_start(problem, None),
+        },
+    };
+    let start_ms = cem_ms + t_start.elapsed().as_secs_f64() * 1e3;
+    let mut notes = vec![start.note.clone()];
     let unwrapped =
         unwrap_boundary(&start.boundary, options.min_gap).ok_or(DiskError::InvalidStart)?;
     if unwrapped.repaired > 0 {
@@ -162,7 +229,6 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             unwrapped.repaired
         ));
     }
-    let schur = Schur::new(problem, options.schur);
     let cur = evaluate(&schur, unwrapped.theta);
     if !cur.energy.is_finite() {
         return Err(DiskError::NonFinite {
@@ -171,6 +237,32 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
         });
     }
     let mut descent = Descent::new(&schur, options);
+    let qn = options.variant == CcemVariant::QuasiNewton;
+    let t_pre = Instant::now();
+    // at a repaired start (gaps set to the floor where the start stepped backwards) the
+    // Hessian describes an artificial crowding and misleads BFGS (igea_open: it stalls
+    // 1e-4 above the minimum): precondition only a start in order
+    if qn && options.hessian_preconditioner && unwrapped.repaired == 0 {
+        if let Some(a) = schur.dense() {
+            descent.precond = Preconditioner::at(a, &cur);
+            match &descent.precond {
+                Some(p) => notes.push(format!(
+                    "BFGS preconditioned by the exact Hessian at the start ({:.0} ms){}",
+                    p.ms,
+                    if p.shift > 0.0 {
+                        format!(" (shifted by {:.1e} to be positive definite)", p.shift)
+                    } else {
+                        String::new()
+                    }
+                )),
+                None => notes.push(
+                    "the Hessian at the start is not positive definite even shifted: plain BFGS"
+                        .into(),
+                ),
+            }
+        }
+    }
+    let precond_ms = t_pre.elapsed().as_secs_f64() * 1e3;
     descent.log_state(&cur);
     let floor_max = GAP_FLOOR_MAX.min(0.1 * std::f64::consts::TAU / problem.num_boundary() as f64);
     let t_iter = Instant::now();
@@ -205,8 +297,12 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
     let finished_at = t0.elapsed().as_secs_f64() * 1e3;
     let residual = interior_residual(problem, &map);
     let elapsed = t0.elapsed().as_secs_f64() * 1e3;
-    let factorizations = start.report.as_ref().map_or(1, |r| r.factorizations);
-    let qn = options.variant == CcemVariant::QuasiNewton;
+    let factorizations = 1 + start.extra_factorizations;
+    if descent.precond_dropped {
+        notes.push(
+            "a search along the preconditioned direction stalled: continued as plain BFGS".into(),
+        );
+    }
     let mut ls = descent.ls;
     ls.qn_pairs_skipped = descent.bfgs.skipped;
     let report = SolverReport {
@@ -232,7 +328,7 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             products: schur.products(),
         }),
         stages_ms: Some(CcemStages {
-            start: start_ms,
+            start: start_ms + precond_ms,
             schur: schur.form_ms,
             iterations: iterations_ms,
             finish: finish_ms + (t0.elapsed().as_secs_f64() * 1e3 - finished_at),

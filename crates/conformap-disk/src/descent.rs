@@ -16,6 +16,7 @@ use crate::angles::{
 };
 use crate::ccem_options::{CcemOptions, CcemVariant};
 use crate::energy::{dot, evaluate, quadratic_coefficients, step, Eval};
+use crate::hessian::Preconditioner;
 use crate::line_search::{is_wolfe, wolfe_search, LineOutcome, LinePoint, WolfeParams};
 use crate::qn::Bfgs;
 use crate::report::{LineSearchReport, StepRecord};
@@ -54,6 +55,11 @@ pub(crate) struct Descent<'s, 'a, 'm> {
     pub held: usize,
     pub bfgs: Bfgs,
     pub iterations: usize,
+    /// The factored Hessian at the start, used as BFGS's `H₀` (and for the first step)
+    /// until a search along its direction stalls.
+    pub precond: Option<Preconditioner>,
+    /// Whether a preconditioner was dropped after a stall.
+    pub precond_dropped: bool,
 }
 
 /// One accepted step, or why there is none.
@@ -84,6 +90,8 @@ impl<'s, 'a, 'm> Descent<'s, 'a, 'm> {
             held: 0,
             bfgs: Bfgs::new(options.qn_memory, false),
             iterations: 0,
+            precond: None,
+            precond_dropped: false,
         }
     }
 
@@ -113,6 +121,13 @@ impl<'s, 'a, 'm> Descent<'s, 'a, 'm> {
             let (new, record) = match self.step(&cur, &d, slope, quadratic) {
                 StepResult::Accepted(new, record) => (new, record),
                 StepResult::Stalled { predicted } => {
+                    if self.precond.is_some() {
+                        // retry as the plain Algorithm 4.2 from here
+                        self.precond = None;
+                        self.precond_dropped = true;
+                        self.bfgs.reset();
+                        continue;
+                    }
                     if qn && !self.bfgs.is_empty() {
                         // retry along the steepest descent before giving up
                         self.bfgs.reset();
@@ -151,6 +166,21 @@ impl<'s, 'a, 'm> Descent<'s, 'a, 'm> {
     fn direction(&mut self, cur: &Eval, qn: bool) -> (Vec<f64>, f64) {
         let g = &cur.grad;
         let gp = gaps(&cur.theta);
+        if let Some(h) = &self.precond {
+            let mut d = if qn && !self.bfgs.is_empty() {
+                self.bfgs.direction_with(g, |q| h.apply_inverse(q))
+            } else {
+                let mut q: Vec<f64> = g.iter().map(|x| -x).collect();
+                h.apply_inverse(&mut q);
+                q
+            };
+            remove_mean(&mut d);
+            self.held = hold_gaps_at_floor(&gp, &mut d, self.floor);
+            let s = dot(g, &d);
+            if s < -1e-8 * norm(g) * norm(&d) {
+                return (d, s);
+            }
+        }
         if qn && !self.bfgs.is_empty() {
             let mut d = self.bfgs.direction(g);
             remove_mean(&mut d);

@@ -1,7 +1,7 @@
 //! Initial boundary maps: Angenent et al.'s map (CEM Eq. 13–16) and the arc-length circle.
 
 use conformap_mesh::TriMesh;
-use conformap_operators::{face_areas, Cholesky, LaplacianBlocks, Partition};
+use conformap_operators::{face_areas, solve_dense_spd, Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 
 use crate::problem::{polygon_area, DiskProblem};
@@ -124,6 +124,61 @@ pub fn angenent_boundary(problem: &DiskProblem<'_>) -> Result<InitialBoundary, D
         face,
         conjugated,
         factor_ms,
+    })
+}
+
+/// Angenent's initial boundary map (as [`angenent_boundary`]) from the dense Schur
+/// complement `A` of the problem, without a second factorization: with `b` the
+/// right-hand side of Eq. 14 for `face` ([`angenent_rhs`]), the boundary values of
+/// `L f = b` solve `A f_B = b_B − L_BI L_II⁻¹ b_I` (block elimination of the interior), with
+/// the first boundary vertex pinned to 0 as in [`angenent_boundary`]. `a` is `A`
+/// (column-major `n_B × n_B`) and `coupling` is `L_BI L_II⁻¹ b_I`; the reduced system is
+/// solved by a dense Cholesky factorization (`n_B³ / 3` flops).
+///
+/// # Errors
+/// [`DiskError::Operator`] if the reduced `A` is not positive definite (an interior cut
+/// off from the boundary); [`DiskError::BoundaryCollapsed`] / [`DiskError::NonFinite`] if a
+/// boundary value is at the centre.
+pub(crate) fn angenent_from_schur(
+    problem: &DiskProblem<'_>,
+    face: usize,
+    a: &[f64],
+    coupling: &[Complex64],
+) -> Result<InitialBoundary, DiskError> {
+    let t0 = std::time::Instant::now();
+    let part = problem.partition();
+    let nb = part.boundary.len();
+    let mut rb: Vec<Complex64> = coupling.iter().map(|c| -c).collect();
+    for (v, val) in angenent_rhs(problem.mesh(), face) {
+        if !part.is_interior[v as usize] {
+            rb[part.local[v as usize] as usize] += val;
+        }
+    }
+    // pin boundary vertex 0: the system on boundary vertices 1..n_B
+    let m = nb - 1;
+    let mut reduced = vec![0.0; m * m];
+    for j in 0..m {
+        reduced[j * m..(j + 1) * m].copy_from_slice(&a[(j + 1) * nb + 1..(j + 2) * nb]);
+    }
+    let mut x = Vec::with_capacity(2 * m);
+    x.extend(rb[1..].iter().map(|z| z.re));
+    x.extend(rb[1..].iter().map(|z| z.im));
+    solve_dense_spd(&mut reduced, m, &mut x, 2, 0)?;
+    let mut fb = Vec::with_capacity(nb);
+    fb.push(Complex64::new(0.0, 0.0));
+    fb.extend((0..m).map(|k| Complex64::new(x[k], x[m + k])));
+    centralize_normalize(&mut fb, &part.boundary, "initial map")?;
+    let conjugated = polygon_area(&fb) < 0.0;
+    if conjugated {
+        for z in &mut fb {
+            *z = z.conj();
+        }
+    }
+    Ok(InitialBoundary {
+        boundary: fb,
+        face,
+        conjugated,
+        factor_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
 }
 

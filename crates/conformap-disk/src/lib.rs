@@ -49,6 +49,7 @@ mod descent;
 mod energy;
 mod error;
 mod harmonic;
+mod hessian;
 mod initial;
 mod koebe;
 mod koebe_options;
@@ -62,6 +63,8 @@ mod problem;
 mod qn;
 mod report;
 mod schur;
+#[cfg(test)]
+mod speed_tests;
 mod unfold;
 
 #[doc(hidden)]

@@ -73,6 +73,25 @@ impl Bfgs {
         true
     }
 
+    /// `−H g` with the initial inverse Hessian `H₀` applied in place by `apply_h0` instead
+    /// of `(sᵀy / yᵀy) I` (a preconditioned BFGS: the two-loop recursion is unchanged).
+    pub fn direction_with(&self, g: &[f64], apply_h0: impl Fn(&mut [f64])) -> Vec<f64> {
+        let mut q: Vec<f64> = g.to_vec();
+        let mut alphas = Vec::with_capacity(self.pairs.len());
+        for (s, y, rho) in self.pairs.iter().rev() {
+            let a = rho * dot(s, &q);
+            q.iter_mut().zip(y).for_each(|(qi, yi)| *qi -= a * yi);
+            alphas.push(a);
+        }
+        apply_h0(&mut q);
+        for ((s, y, rho), a) in self.pairs.iter().zip(alphas.iter().rev()) {
+            let b = rho * dot(y, &q);
+            q.iter_mut().zip(s).for_each(|(qi, si)| *qi += (a - b) * si);
+        }
+        q.iter_mut().for_each(|x| *x = -*x);
+        q
+    }
+
     /// `−H g` (Algorithm 4.2, step 10).
     pub fn direction(&self, g: &[f64]) -> Vec<f64> {
         let mut q: Vec<f64> = g.to_vec();

@@ -62,7 +62,8 @@ pub struct SolverReport {
 /// Milliseconds per stage of a CCEM run (after the problem's assembly and factorization).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct CcemStages {
-    /// The starting boundary (CEM by default, with its own factorization).
+    /// The starting boundary (Angenent's map from the Schur complement by default; CEM,
+    /// with its own factorization, on request) and the Hessian preconditioner at it.
     pub start: f64,
     /// Forming the dense Schur complement (0 for implicit).
     pub schur: f64,

@@ -2,20 +2,19 @@
 //! Dirichlet-to-Neumann map of the boundary), applied to boundary vectors in one of two
 //! ways:
 //!
-//! - **dense**: `A` formed once as an `n_B × n_B` matrix from blocked multi-column solves
-//!   `X = L_II⁻¹ L_IB` with the existing factor of `L_II`; every product afterwards is
+//! - **dense**: `A` formed once as an `n_B × n_B` matrix by one forward solve restricted to
+//!   the supernodes that the boundary's interior neighbours reach on their way to the root
+//!   of the elimination tree ([`conformap_operators::Cholesky::inverse_gram`]: `A = L_BB −
+//!   WᵀW`, `W = G⁻¹ P L_IB`, no backward solve); every product afterwards is
 //!   boundary-sized work (`n_B²`), independent of the interior size.
 //! - **implicit**: every product `A x` costs one sparse product with `L_IB`, one two-column
 //!   solve with the factor of `L_II`, one product with `L_IBᵀ` and one with `L_BB`.
 //!
-//! Forming `A` costs about `n_B` column solves, but done in blocks of many columns the
-//! solves run at dense-kernel speed, several times faster per column than the two-column
-//! solves of the implicit path. The dense path therefore wins whenever the minimization
-//! needs more than a few dozen products and `n_B²` is small against the factor's
-//! non-zeros; on a long boundary around a small interior (maze.obj: 3,064 boundary
-//! vertices, 3,056 interior ones) a dense product costs more than an implicit one and the
-//! implicit path wins. [`SchurMode::Auto`] decides with the cost model of
-//! [`SchurMode::resolve`].
+//! On the class-a meshes forming `A` costs 2–10% of one factorization (it used to cost 3–5
+//! factorizations as `n_B` blocked column solves); on a long boundary around a small
+//! interior (maze.obj: 3,064 boundary vertices, 3,056 interior ones, `W` nearly dense) a
+//! dense product and the formation cost more than implicit products and the implicit path
+//! wins. [`SchurMode::Auto`] decides with the cost model of [`SchurMode::resolve`].
 
 use std::cell::Cell;
 use std::time::Instant;
@@ -23,6 +22,7 @@ use std::time::Instant;
 use conformap_operators::mul_complex;
 use num_complex::Complex64;
 use rayon::prelude::*;
+use sprs::CsMat;
 
 use crate::problem::DiskProblem;
 
@@ -44,47 +44,51 @@ pub enum SchurMode {
 pub const DENSE_SCHUR_MAX_BYTES: usize = 512 << 20;
 
 /// Products of `A` [`SchurMode::Auto`] budgets for a run when it compares the two paths:
-/// a converged CCEM-QN run on the class-a meshes needs 40–260 (one per line-search
-/// evaluation).
+/// a converged CCEM-QN run needs 10–60 with the Hessian preconditioner (dense only), 40–550
+/// without (one per line-search evaluation); the model charges this many to both paths,
+/// which favours implicit.
 pub const EXPECTED_SCHUR_PRODUCTS: usize = 200;
 
-/// Relative cost of one column of a blocked solve, per factor non-zero (measured).
-const BLOCKED_COLUMN_COST: f64 = 1.3;
-/// Relative cost of one two-column solve, per factor non-zero (measured).
-const TWO_COLUMN_SOLVE_COST: f64 = 8.0;
-/// Relative cost of a dense product, per entry of `A` (measured).
-const DENSE_ENTRY_COST: f64 = 1.2;
-
-/// Columns per blocked solve when forming `A`: large enough for the supernodal solve to run
-/// at matrix–matrix speed (measured on hand.obj: 15 ms per column in two-column solves,
-/// 5.9 with 16 columns, 3.9 with 64, 3.6 with 256), each block's buffer capped at 64 MiB.
-/// Blocks are solved in parallel, so `n_B` is split into at least two blocks per thread
-/// (but not below 16 columns).
-const BLOCK_COLUMNS: usize = 64;
-const MIN_BLOCK_COLUMNS: usize = 16;
-const BLOCK_BYTES: usize = 64 << 20;
+/// Nanoseconds per multiply–add of the formation of `A` (dense kernels on supernodes;
+/// measured 0.1–0.4 on 2 cores, depending on the machine's load).
+const FORM_NS_PER_MULADD: f64 = 0.2;
+/// Nanoseconds per factor non-zero of one two-column solve (memory-bound; measured 8).
+const SOLVE_NS_PER_NNZ: f64 = 8.0;
+/// Nanoseconds per entry of `A` of one dense product (memory-bound; measured 0.3–0.6).
+const PRODUCT_NS_PER_ENTRY: f64 = 0.5;
+/// Nanoseconds per multiply–add of a dense Cholesky factorization (the Angenent start and
+/// the Hessian preconditioner, `n_B³ / 6` each; measured 0.03–0.1).
+const DENSE_FACTOR_NS_PER_MULADD: f64 = 0.1;
 
 impl SchurMode {
     /// The path actually used for a problem: `Dense` or `Implicit` (never `Auto`).
     ///
-    /// Cost model, in milliseconds per non-zero of the factor of `L_II` (`nnz`) and per
-    /// entry of a dense `A`, measured on the class-a meshes (2 cores; see the crate
-    /// README): a column of a blocked solve costs `1.3e-6 nnz`, a two-column solve (one
-    /// implicit product) `8e-6 nnz`, a dense product `1.2e-6 n_B²`. Dense is chosen when
-    /// `1.3 n_B nnz + 1.2 P n_B² < 8 P nnz` for `P =` [`EXPECTED_SCHUR_PRODUCTS`], and
-    /// `8 n_B²` ≤ [`DENSE_SCHUR_MAX_BYTES`]. The formation runs on all threads, which the
-    /// model leaves out as a margin in favour of dense.
+    /// Cost model (nanoseconds, measured on 2 cores; see the constants): dense costs the
+    /// formation (its multiply–adds `F` counted exactly by
+    /// [`conformap_operators::Cholesky::inverse_gram_cost`]) at 0.2 ns, two dense
+    /// factorizations of `n_B³ / 6` at 0.1 ns, and `P` products of `n_B²` entries at
+    /// 0.5 ns; implicit costs `P` two-column solves of `nnz` (the factor's non-zeros) at
+    /// 8 ns, `P =` [`EXPECTED_SCHUR_PRODUCTS`]. Dense is chosen when cheaper and
+    /// `8 n_B²` ≤ [`DENSE_SCHUR_MAX_BYTES`].
     pub fn resolve(self, problem: &DiskProblem<'_>) -> Self {
         match self {
             Self::Dense | Self::Implicit => self,
             _ => {
                 let nb = problem.num_boundary() as f64;
-                let nnz = problem.interior_factor().stats().nnz_factor as f64;
+                if 8.0 * nb * nb > DENSE_SCHUR_MAX_BYTES as f64 {
+                    return Self::Implicit;
+                }
+                let factor = problem.interior_factor();
+                let nnz = factor.stats().nnz_factor as f64;
                 let p = EXPECTED_SCHUR_PRODUCTS as f64;
-                let bytes = 8.0 * nb * nb;
-                let dense = BLOCKED_COLUMN_COST * nb * nnz + DENSE_ENTRY_COST * p * nb * nb;
-                let implicit = TWO_COLUMN_SOLVE_COST * p * nnz;
-                if bytes <= DENSE_SCHUR_MAX_BYTES as f64 && dense < implicit {
+                let implicit = SOLVE_NS_PER_NNZ * p * nnz;
+                let Ok(form) = factor.inverse_gram_cost(&problem.blocks().ib) else {
+                    return Self::Implicit;
+                };
+                let dense = FORM_NS_PER_MULADD * form
+                    + DENSE_FACTOR_NS_PER_MULADD * nb * nb * nb / 3.0
+                    + PRODUCT_NS_PER_ENTRY * p * nb * nb;
+                if dense < implicit {
                     Self::Dense
                 } else {
                     Self::Implicit
@@ -109,6 +113,9 @@ pub(crate) struct Schur<'a, 'm> {
     problem: &'a DiskProblem<'m>,
     /// Column-major `n_B × n_B` matrix when dense.
     dense: Option<Vec<f64>>,
+    /// `L_BI L_II⁻¹ b_I` for the interior part of the right-hand side given to
+    /// [`Schur::with_rhs`] (dense mode only).
+    coupling: Option<Vec<Complex64>>,
     /// Milliseconds spent forming the dense matrix (0 when implicit).
     pub form_ms: f64,
     products: Cell<usize>,
@@ -117,14 +124,29 @@ pub(crate) struct Schur<'a, 'm> {
 impl<'a, 'm> Schur<'a, 'm> {
     /// Prepares `A` for `problem` in the given mode (`Auto` is resolved first).
     pub fn new(problem: &'a DiskProblem<'m>, mode: SchurMode) -> Self {
+        Self::with_rhs(problem, mode, &[])
+    }
+
+    /// As [`Self::new`]; when dense, also computes `L_BI L_II⁻¹ b_I` for the sparse
+    /// right-hand side `rhs` (vertex, value) in the same pass (entries at boundary
+    /// vertices are ignored): the boundary part of a solve with the full Laplacian.
+    pub fn with_rhs(
+        problem: &'a DiskProblem<'m>,
+        mode: SchurMode,
+        rhs: &[(u32, Complex64)],
+    ) -> Self {
         let t0 = Instant::now();
-        let dense = match mode.resolve(problem) {
-            SchurMode::Dense => Some(form_dense(problem)),
-            _ => None,
+        let (dense, coupling) = match mode.resolve(problem) {
+            SchurMode::Dense => match form_dense(problem, rhs) {
+                Some((a, c)) => (Some(a), Some(c)),
+                None => (None, None),
+            },
+            _ => (None, None),
         };
         Self {
             problem,
             dense,
+            coupling,
             form_ms: t0.elapsed().as_secs_f64() * 1e3,
             products: Cell::new(0),
         }
@@ -139,6 +161,16 @@ impl<'a, 'm> Schur<'a, 'm> {
         }
     }
 
+    /// The dense matrix (column-major `n_B × n_B`), when formed.
+    pub fn dense(&self) -> Option<&[f64]> {
+        self.dense.as_deref()
+    }
+
+    /// `L_BI L_II⁻¹ b_I` for the right-hand side given to [`Self::with_rhs`], when dense.
+    pub fn coupling(&self) -> Option<&[Complex64]> {
+        self.coupling.as_deref()
+    }
+
     /// Products computed so far.
     pub fn products(&self) -> usize {
         self.products.get()
@@ -148,21 +180,8 @@ impl<'a, 'm> Schur<'a, 'm> {
     /// columns: `A` is real).
     pub fn apply(&self, x: &[Complex64]) -> Vec<Complex64> {
         self.products.set(self.products.get() + 1);
-        let nb = x.len();
         match &self.dense {
-            Some(a) => {
-                // A is symmetric: (A x)_j = column j · x, contiguous in memory.
-                a.chunks_exact(nb)
-                    .map(|col| {
-                        let (mut re, mut im) = (0.0, 0.0);
-                        for (&c, z) in col.iter().zip(x) {
-                            re += c * z.re;
-                            im += c * z.im;
-                        }
-                        Complex64::new(re, im)
-                    })
-                    .collect()
-            }
+            Some(a) => dense_product(a, x),
             None => {
                 let p = self.problem;
                 let mut rhs = p.blocks().ib_mul(x);
@@ -180,26 +199,122 @@ impl<'a, 'm> Schur<'a, 'm> {
     }
 }
 
-/// Forms `A = L_BB − L_IBᵀ L_II⁻¹ L_IB` column-major, in blocks of columns solved at once
-/// with the factor of `L_II`. The result is symmetrized and its diagonal set to minus the
-/// off-diagonal row sums, so that `A 1 = 0` holds to rounding (the constant vector spans
-/// the null space of A, CCEM §3), which keeps the energy exactly rotation invariant.
-pub(crate) fn form_dense(problem: &DiskProblem<'_>) -> Vec<f64> {
-    let ni = problem.blocks().ii.rows();
+/// Columns per parallel task of a dense product; below two tasks' worth the product runs
+/// on one thread (thread dispatch costs more than the memory-bound work it splits).
+const PRODUCT_COLUMNS_PER_TASK: usize = 256;
+
+/// `A x` for a dense symmetric `A` (column-major): `(A x)_j` is column `j` · `x`, for the
+/// real and imaginary parts at once, with four independent partial sums per part so that
+/// the loop vectorizes; columns are split over the threads when `n_B` is large.
+fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
+    let nb = x.len();
+    let re: Vec<f64> = x.iter().map(|z| z.re).collect();
+    let im: Vec<f64> = x.iter().map(|z| z.im).collect();
+    let column = |col: &[f64]| -> Complex64 {
+        let (mut sr, mut si) = ([0.0f64; 4], [0.0f64; 4]);
+        let chunks = col.chunks_exact(4);
+        let tail = chunks.remainder();
+        for ((c, r), i) in chunks.zip(re.chunks_exact(4)).zip(im.chunks_exact(4)) {
+            for l in 0..4 {
+                sr[l] += c[l] * r[l];
+                si[l] += c[l] * i[l];
+            }
+        }
+        let base = nb - tail.len();
+        let (mut tr, mut ti) = (0.0, 0.0);
+        for (k, &c) in tail.iter().enumerate() {
+            tr += c * re[base + k];
+            ti += c * im[base + k];
+        }
+        Complex64::new(
+            (sr[0] + sr[1]) + (sr[2] + sr[3]) + tr,
+            (si[0] + si[1]) + (si[2] + si[3]) + ti,
+        )
+    };
+    if nb >= 2 * PRODUCT_COLUMNS_PER_TASK && rayon::current_num_threads() > 1 {
+        let mut out = vec![Complex64::new(0.0, 0.0); nb];
+        out.par_chunks_mut(PRODUCT_COLUMNS_PER_TASK)
+            .zip(a.par_chunks(PRODUCT_COLUMNS_PER_TASK * nb))
+            .for_each(|(o, cols)| {
+                for (y, col) in o.iter_mut().zip(cols.chunks_exact(nb)) {
+                    *y = column(col);
+                }
+            });
+        out
+    } else {
+        a.chunks_exact(nb).map(column).collect()
+    }
+}
+
+/// Forms `A = L_BB − L_IBᵀ L_II⁻¹ L_IB` column-major with one restricted forward solve
+/// over the supernodes the boundary's neighbours reach
+/// ([`conformap_operators::Cholesky::inverse_gram`] with `R = [L_IB | b_I]`), and
+/// `L_BI L_II⁻¹ b_I` for the interior part `b_I` of `rhs`. The result is symmetric and its
+/// diagonal set to minus the off-diagonal row sums, so that `A 1 = 0` holds to rounding
+/// (the constant vector spans the null space of A, CCEM §3), which keeps the energy
+/// exactly rotation invariant. `None` if the factor refuses `R` (never for a problem's
+/// own blocks).
+pub(crate) fn form_dense(
+    problem: &DiskProblem<'_>,
+    rhs: &[(u32, Complex64)],
+) -> Option<(Vec<f64>, Vec<Complex64>)> {
+    let blocks = problem.blocks();
+    let part = problem.partition();
+    let ni = blocks.ii.rows();
     let nb = problem.num_boundary();
-    // at least two blocks per thread when n_B allows, at most BLOCK_COLUMNS, BLOCK_BYTES
-    let per_thread = nb
-        .div_ceil(2 * rayon::current_num_threads())
-        .max(MIN_BLOCK_COLUMNS);
-    let cols = per_thread
-        .min(BLOCK_COLUMNS)
-        .min((BLOCK_BYTES / (8 * ni.max(1))).max(1));
+    // R = [L_IB | Re b_I | Im b_I]
+    let ib = blocks.ib.view();
+    let (ptr, idx, val) = ib.into_raw_storage();
+    let mut indptr = ptr.to_vec();
+    let mut indices = idx.to_vec();
+    let mut data = val.to_vec();
+    let interior_rhs: Vec<(usize, Complex64)> = rhs
+        .iter()
+        .filter(|(v, _)| part.is_interior[*v as usize])
+        .map(|&(v, z)| (part.local[v as usize] as usize, z))
+        .collect();
+    for part_of in [|z: Complex64| z.re, |z: Complex64| z.im] {
+        let mut col: Vec<(usize, f64)> =
+            interior_rhs.iter().map(|&(i, z)| (i, part_of(z))).collect();
+        col.sort_unstable_by_key(|e| e.0);
+        for (i, v) in col {
+            if indices.len() > *indptr.last().unwrap_or(&0) && indices.last() == Some(&i) {
+                if let Some(d) = data.last_mut() {
+                    *d += v;
+                }
+            } else {
+                indices.push(i);
+                data.push(v);
+            }
+        }
+        indptr.push(indices.len());
+    }
+    let r = CsMat::new_csc((ni, nb + 2), indptr, indices, data);
+    let gram = problem.interior_factor().inverse_gram(&r).ok()?;
+    let k = nb + 2;
     let mut a = vec![0.0; nb * nb];
-    // blocks of `cols` columns of A, solved in parallel (each solve is sequential)
-    a.par_chunks_mut(cols * nb)
-        .enumerate()
-        .for_each(|(b, out)| dense_columns(problem, b * cols, out));
-    // symmetrize and make rows sum to zero
+    for j in 0..nb {
+        let src = &gram.values[j * k..j * k + nb];
+        let dst = &mut a[j * nb..(j + 1) * nb];
+        for (d, s) in dst.iter_mut().zip(src) {
+            *d = -s;
+        }
+        if let Some(col) = blocks.bb.outer_view(j) {
+            for (i, &v) in col.iter() {
+                dst[i] += v;
+            }
+        }
+    }
+    symmetrize_null_space(&mut a, nb);
+    let coupling = (0..nb)
+        .map(|j| Complex64::new(gram.get(j, nb), gram.get(j, nb + 1)))
+        .collect();
+    Some((a, coupling))
+}
+
+/// Symmetrizes `a` (`n × n`, column-major) and sets its diagonal to minus the off-diagonal
+/// column sums.
+fn symmetrize_null_space(a: &mut [f64], nb: usize) {
     for j in 0..nb {
         for r in (j + 1)..nb {
             let s = 0.5 * (a[j * nb + r] + a[r * nb + j]);
@@ -211,35 +326,35 @@ pub(crate) fn form_dense(problem: &DiskProblem<'_>) -> Vec<f64> {
         let off: f64 = (0..nb).filter(|&r| r != j).map(|r| a[j * nb + r]).sum();
         a[j * nb + j] = -off;
     }
-    a
 }
 
-/// Columns `start..start + out.len() / n_B` of `A`, written into `out` (column-major).
-fn dense_columns(problem: &DiskProblem<'_>, start: usize, out: &mut [f64]) {
+/// The former way of forming `A` (kept as the reference of the tests): blocked
+/// multi-column solves `L_II⁻¹ L_IB` with the factor, in parallel.
+#[cfg(test)]
+pub(crate) fn form_dense_by_solves(problem: &DiskProblem<'_>) -> Vec<f64> {
     let blocks = problem.blocks();
     let ni = blocks.ii.rows();
     let nb = problem.num_boundary();
-    let k = out.len() / nb;
-    let ib = &blocks.ib;
-    let mut buf = vec![0.0; ni * k];
-    for c in 0..k {
-        if let Some(col) = ib.outer_view(start + c) {
+    let mut a = vec![0.0; nb * nb];
+    let mut buf = vec![0.0; ni];
+    for j in 0..nb {
+        buf.fill(0.0);
+        if let Some(col) = blocks.ib.outer_view(j) {
             for (i, &v) in col.iter() {
-                buf[c * ni + i] = v;
+                buf[i] = v;
             }
         }
-    }
-    problem.interior_factor().solve_in_place(&mut buf, k);
-    for (c, col_out) in out.chunks_exact_mut(nb).enumerate() {
-        let x = &buf[c * ni..(c + 1) * ni];
-        // −L_IBᵀ X_j: one sparse dot product per boundary row
-        for (r, col) in ib.outer_iterator().enumerate() {
-            col_out[r] = -col.iter().map(|(i, &v)| v * x[i]).sum::<f64>();
+        problem.interior_factor().solve_in_place(&mut buf, 1);
+        let out = &mut a[j * nb..(j + 1) * nb];
+        for (r, col) in blocks.ib.outer_iterator().enumerate() {
+            out[r] = -col.iter().map(|(i, &v)| v * buf[i]).sum::<f64>();
         }
-        if let Some(col) = blocks.bb.outer_view(start + c) {
+        if let Some(col) = blocks.bb.outer_view(j) {
             for (r, &v) in col.iter() {
-                col_out[r] += v;
+                out[r] += v;
             }
         }
     }
+    symmetrize_null_space(&mut a, nb);
+    a
 }

@@ -28,7 +28,10 @@ mod laplacian;
 mod lu;
 mod mean_value;
 
-pub use cholesky::{relative_residual, Cholesky, CholeskyOptions, FactorStats, Ordering};
+pub use cholesky::{
+    relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky, FactorStats,
+    InverseGram, Ordering,
+};
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
     triangle_cotangents,

@@ -1,9 +1,10 @@
 //! Benchmarks of `conformap disk` stages on real and generated meshes.
 //!
 //! ```text
-//! cargo run --release -p conformap-bench -- [--runs N] [--method cem|harmonic|...] MESH... [gen:250k gen:1m ...]
+//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH... [gen:250k gen:1m ...]
 //! ```
 //!
+//! The default method is `conformap disk`'s, `ccem-qn`. Stages: see [`stages`].
 //! Each (mesh, run) executes in a child process of this binary, so that the peak resident
 //! set size (VmHWM) is that run's alone; the parent prints a Markdown table of medians.
 //! `gen:N` (N like `250k`, `1m`, `2m`) is a bumpy height field over a square with about N
@@ -19,7 +20,7 @@ use crate::stages::StageRow;
 
 fn usage() -> ! {
     eprintln!(
-        "usage: conformap-bench [--runs N] [--method M] MESH.obj... [gen:250k|gen:500k|gen:1m|gen:2m ...]\n       \
+        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|gen:500k|gen:1m|gen:2m ...]\n       \
          conformap-bench --child MESH METHOD   (internal)"
     );
     std::process::exit(2)
@@ -41,7 +42,7 @@ fn main() {
         return;
     }
     let mut runs = 3usize;
-    let mut method = "cem".to_string();
+    let mut method = "ccem-qn".to_string();
     let mut inputs = Vec::new();
     let mut it = args.into_iter();
     while let Some(a) = it.next() {
@@ -61,7 +62,9 @@ fn main() {
         usage();
     }
     let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("conformap-bench"));
-    println!("method `{method}`, median of {runs} runs, each in its own process; times in ms\n");
+    println!(
+        "method `{method}`, the run of median ratio of {runs}, each in its own process; times in ms\n"
+    );
     println!("{}", StageRow::header());
     for input in inputs {
         let path = match input.strip_prefix("gen:") {
@@ -101,8 +104,8 @@ fn main() {
                 }
             }
         }
-        if let Some(median) = StageRow::median(&rows) {
-            println!("{}", median.to_markdown(&input));
+        if let Some((median, lo, hi)) = StageRow::median(&rows) {
+            println!("{}", median.to_markdown(&input, lo, hi));
         }
     }
 }

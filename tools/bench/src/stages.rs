@@ -1,10 +1,27 @@
-//! One timed run of the disk pipeline, stage by stage, and the table rows.
+//! One timed run of the `conformap disk` pipeline, stage by stage, and the table rows.
+//!
+//! Stages, as in the `timings_ms` of `conformap disk --report`:
+//! - `read`: reading and validating the file;
+//! - `assemble`: the cotangent Laplacian and its blocks;
+//! - `analyse`: the symbolic factorization of `L_II` (fill-reducing ordering, structure);
+//! - `factor`: its numeric factorization;
+//! - `iterate`: everything the method does after that — for CCEM: forming the Schur
+//!   complement (`schur`), the starting boundary (`start`), the iterations on the boundary
+//!   angles (`iterations`), the final harmonic solve and fold check (`finish`);
+//! - `metrics`, `write`.
+//!
+//! `solver` = assemble + analyse + factor + iterate, the map computation proper;
+//! `total` = every stage. `ref` is one more factorization of the same `L_II`
+//! (analyse + factor, the facade's defaults) run in the same process after the pipeline
+//! and after its peak memory was read: the yardstick of the performance model
+//! (`solver / ref`).
 
 use std::path::Path;
 use std::time::Instant;
 
-use conformap_disk::{cem, harmonic_arc_length, CemOptions, DiskProblem};
+use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_operators::Cholesky;
 
 /// Stage times (ms) and sizes of one run.
 #[derive(Debug, Clone, Default)]
@@ -16,15 +33,23 @@ pub struct StageRow {
     assemble: f64,
     analyse: f64,
     factor: f64,
+    schur: f64,
+    start: f64,
+    iterations: f64,
+    finish: f64,
     iterate: f64,
     metrics: f64,
     write: f64,
+    solver: f64,
     total: f64,
+    reference: f64,
     peak_rss_mib: f64,
     energy: f64,
+    steps: f64,
+    flipped: f64,
 }
 
-const FIELDS: usize = 13;
+const FIELDS: usize = 21;
 
 impl StageRow {
     fn values(&self) -> [f64; FIELDS] {
@@ -36,12 +61,20 @@ impl StageRow {
             self.assemble,
             self.analyse,
             self.factor,
+            self.schur,
+            self.start,
+            self.iterations,
+            self.finish,
             self.iterate,
             self.metrics,
             self.write,
+            self.solver,
             self.total,
+            self.reference,
             self.peak_rss_mib,
             self.energy,
+            self.steps,
+            self.flipped,
         ]
     }
 
@@ -54,12 +87,20 @@ impl StageRow {
             assemble: v[4],
             analyse: v[5],
             factor: v[6],
-            iterate: v[7],
-            metrics: v[8],
-            write: v[9],
-            total: v[10],
-            peak_rss_mib: v[11],
-            energy: v[12],
+            schur: v[7],
+            start: v[8],
+            iterations: v[9],
+            finish: v[10],
+            iterate: v[11],
+            metrics: v[12],
+            write: v[13],
+            solver: v[14],
+            total: v[15],
+            reference: v[16],
+            peak_rss_mib: v[17],
+            energy: v[18],
+            steps: v[19],
+            flipped: v[20],
         }
     }
 
@@ -81,36 +122,38 @@ impl StageRow {
         (v.len() == FIELDS).then(|| Self::from_values(&v))
     }
 
-    /// Field-wise median.
-    pub fn median(rows: &[Self]) -> Option<Self> {
+    /// The solver time as a multiple of one factorization of `L_II`.
+    pub fn ratio(&self) -> f64 {
+        self.solver / self.reference.max(1e-9)
+    }
+
+    /// The run of median ratio (a whole run, so that its stages add up), its ratio, and
+    /// the smallest and largest ratio over the runs.
+    pub fn median(rows: &[Self]) -> Option<(Self, f64, f64)> {
         if rows.is_empty() {
             return None;
         }
-        let mut out = [0.0; FIELDS];
-        for (k, slot) in out.iter_mut().enumerate() {
-            let mut col: Vec<f64> = rows.iter().map(|r| r.values()[k]).collect();
-            col.sort_by(f64::total_cmp);
-            *slot = col[col.len() / 2];
-        }
-        Some(Self::from_values(&out))
+        let mut sorted: Vec<&Self> = rows.iter().collect();
+        sorted.sort_by(|a, b| a.ratio().total_cmp(&b.ratio()));
+        let lo = sorted[0].ratio();
+        let hi = sorted[sorted.len() - 1].ratio();
+        Some((sorted[sorted.len() / 2].clone(), lo, hi))
     }
 
     /// The Markdown header.
     pub fn header() -> String {
-        "| mesh | V | F | n_b | read | assemble | analyse | factor | iterate | metrics | write | \
-         total | total / (analyse+factor) | peak RSS MiB | E_C |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "| mesh | V | F | n_B | read | assemble | analyse | factor | iterate (schur + start + iterations + finish) | metrics | write | solver | total | one factorization | solver / factorization (min–max) | peak RSS MiB | E_C | CCEM iterations |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
             .to_string()
     }
 
     /// One Markdown row.
-    pub fn to_markdown(&self, name: &str) -> String {
-        let one_factor = (self.analyse + self.factor).max(1e-9);
+    pub fn to_markdown(&self, name: &str, lo: f64, hi: f64) -> String {
         let name = Path::new(name)
             .file_name()
             .map_or(name.to_string(), |n| n.to_string_lossy().to_string());
         format!(
-            "| {name} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.2} | {:.0} | {:.5} |",
+            "| {name} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} ({:.0} + {:.0} + {:.0} + {:.0}) | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | **{:.2}** ({:.2}–{:.2}) | {:.0} | {:.6} | {:.0}{} |",
             self.vertices,
             self.faces,
             self.boundary,
@@ -119,12 +162,26 @@ impl StageRow {
             self.analyse,
             self.factor,
             self.iterate,
+            self.schur,
+            self.start,
+            self.iterations,
+            self.finish,
             self.metrics,
             self.write,
+            self.solver,
             self.total,
-            self.total / one_factor,
+            self.reference,
+            self.ratio(),
+            lo,
+            hi,
             self.peak_rss_mib,
-            self.energy
+            self.energy,
+            self.steps,
+            if self.flipped > 0.0 {
+                format!(" ({:.0} flipped)", self.flipped)
+            } else {
+                String::new()
+            }
         )
     }
 }
@@ -147,8 +204,10 @@ fn peak_rss_mib() -> f64 {
         .map_or(0.0, |kib| kib / 1024.0)
 }
 
-/// Runs read → disk map → metrics → write once, timing each stage.
+/// Runs read → disk map → metrics → write once, timing each stage, then one reference
+/// factorization of `L_II`.
 pub fn run_once(path: &Path, method: &str) -> Result<StageRow, String> {
+    let method: DiskMethod = method.parse().map_err(|e| format!("{e}"))?;
     let t_all = Instant::now();
     let t = Instant::now();
     let loaded = conformap_io::read_mesh(path).map_err(|e| e.to_string())?;
@@ -157,11 +216,8 @@ pub fn run_once(path: &Path, method: &str) -> Result<StageRow, String> {
     let mut problem = DiskProblem::new(mesh).map_err(|e| e.to_string())?;
     let stats = problem.interior_factor().stats().clone();
     let t = Instant::now();
-    let out = match method {
-        "harmonic" => harmonic_arc_length(&problem),
-        "cem" => cem(&mut problem, &CemOptions::DEFAULT).map_err(|e| e.to_string())?,
-        other => return Err(format!("unknown method `{other}`")),
-    };
+    let out =
+        run_disk_method(&mut problem, method, &DiskOptions::DEFAULT).map_err(|e| e.to_string())?;
     let iterate = ms(t);
     let t = Instant::now();
     let m = planar_map_metrics(mesh, &out.map, &MetricsOptions::default())
@@ -178,6 +234,12 @@ pub fn run_once(path: &Path, method: &str) -> Result<StageRow, String> {
         .map_err(|e| e.to_string())?;
     let _ = std::fs::remove_file(&dest);
     let write = ms(t);
+    let total = ms(t_all);
+    let peak = peak_rss_mib();
+    let stages = out.report.stages_ms.clone().unwrap_or_default();
+    // the yardstick: one more factorization of the same matrix, same defaults
+    let reference = Cholesky::factor(&problem.blocks().ii).map_err(|e| e.to_string())?;
+    let rs = reference.stats();
     Ok(StageRow {
         vertices: mesh.num_vertices() as f64,
         faces: mesh.num_faces() as f64,
@@ -186,12 +248,19 @@ pub fn run_once(path: &Path, method: &str) -> Result<StageRow, String> {
         assemble: problem.assemble_ms,
         analyse: stats.analyse_ms,
         factor: stats.factor_ms,
-        // the method's own time, minus nothing: it includes any further factorization
+        schur: stages.schur,
+        start: stages.start,
+        iterations: stages.iterations,
+        finish: stages.finish,
         iterate,
         metrics,
         write,
-        total: ms(t_all),
-        peak_rss_mib: peak_rss_mib(),
+        solver: problem.assemble_ms + stats.analyse_ms + stats.factor_ms + iterate,
+        total,
+        reference: rs.analyse_ms + rs.factor_ms,
+        peak_rss_mib: peak,
         energy: m.conformal_energy,
+        steps: out.report.iterations as f64,
+        flipped: m.flipped_faces as f64,
     })
 }
