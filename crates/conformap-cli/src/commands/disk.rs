@@ -175,7 +175,9 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
     let input = read_input(&args.mesh, args.repair)?;
     let mesh = &input.mesh;
     let read_ms = ms_since(t);
-    let memory = memory.before_solving(mesh).map_err(in_mesh_file)?;
+    let memory = memory
+        .before_solving(mesh, args.method)
+        .map_err(in_mesh_file)?;
     if let Some(done) = super::disk_holes::dispatch(args, &input, read_ms, memory, t_all) {
         // genus 0 with several boundary loops: the disk with circular holes
         return done;
@@ -312,18 +314,20 @@ impl MemoryCheck {
         Ok(check)
     }
 
-    /// Estimates the peak memory of `disk` on `mesh` and refuses the run, before anything is
-    /// assembled or factored, if it is above the limit.
-    pub fn before_solving(mut self, mesh: &TriMesh) -> Result<Self, Failure> {
-        let boundary = mesh
-            .boundary_loops()
-            .iter()
-            .map(Vec::len)
-            .max()
-            .unwrap_or(0);
-        // neither CEM nor the harmonic map forms a dense boundary block
-        self.estimate = estimate_peak_bytes(mesh.num_vertices(), mesh.num_edges(), boundary, false)
-            .max(self.read_estimate);
+    /// Estimates the peak memory of `disk` with `method` on `mesh` and refuses the run,
+    /// before anything is assembled or factored, if it is above the limit.
+    pub fn before_solving(mut self, mesh: &TriMesh, method: Method) -> Result<Self, Failure> {
+        let loops = mesh.boundary_loops();
+        let boundary = loops.iter().map(Vec::len).max().unwrap_or(0);
+        let (v, e) = (mesh.num_vertices(), mesh.num_edges());
+        // CCEM may form the dense Schur complement; CEM keeps more per vertex
+        let dense = matches!(method, Method::Ccem | Method::CcemQn);
+        let extra = match method {
+            Method::Cem => CEM_EXTRA_BYTES_PER_VERTEX * v as f64,
+            _ => 0.0,
+        };
+        let estimate = estimate_peak_bytes(v, e, boundary, dense) as f64 + extra;
+        self.estimate = (estimate as u64).max(self.read_estimate);
         let what = format!(
             "a disk map of this mesh ({} vertices, {} faces)",
             mesh.num_vertices(),
@@ -383,12 +387,15 @@ pub const READ_BYTES_PER_FILE_BYTE: u64 = 8;
 /// woody.obj (694 vertices).
 const BASE_BYTES: f64 = 8.0 * 1048576.0;
 /// Bytes per vertex for everything but the factor and the Laplacian's entries: mesh,
-/// half-edges, assembly triplets, intrinsic Delaunay triangulation, blocks, maps, metrics.
-const BYTES_PER_VERTEX: f64 = 1100.0;
+/// half-edges, assembly, intrinsic Delaunay triangulation, blocks, maps, metrics.
+const BYTES_PER_VERTEX: f64 = 500.0;
 /// Bytes per `n log₂ n` (n = interior vertices) for the Cholesky factor of `L_II` under AMD
 /// (measured nnz(L) = 3.4 n log₂ n on hand.obj, 4.1 on igea_open.obj; 8-byte values plus
 /// structure and workspace) and what grows with it.
-const FACTOR_BYTES_PER_NLOGN: f64 = 80.0;
+const FACTOR_BYTES_PER_NLOGN: f64 = 60.0;
+/// What CEM keeps beyond CCEM and the harmonic map, per vertex (measured: 490 on
+/// spothead.obj, 520 on hand.obj, 680 on igea_open.obj).
+const CEM_EXTRA_BYTES_PER_VERTEX: f64 = 700.0;
 /// At most this much for a dense boundary-sized block (CCEM's Schur complement).
 const DENSE_MAX_BYTES: f64 = 512.0 * 1048576.0;
 
@@ -399,10 +406,11 @@ const DENSE_MAX_BYTES: f64 = 512.0 * 1048576.0;
 /// surface meshes, plus, for a method that forms one (`dense_boundary`), a dense
 /// boundary-sized block (`8 n_B²` bytes, at most 512 MiB).
 ///
-/// Calibrated against the measured peak (VmHWM): between 1.3× and 1.8× of it on the real
-/// meshes of `../shared/meshes` (694 to 130k vertices) and 1.4× on a generated
-/// 2M-face grid (estimate 2.63 GiB, peak 1.92 GiB); `memory_estimate_bounds_the_measured_peak`
-/// in `tests/robustness.rs` re-measures it.
+/// Calibrated against the measured peak (VmHWM) of CCEM-QN and the harmonic map (CEM adds
+/// [`CEM_EXTRA_BYTES_PER_VERTEX`]): 1.3× to 1.5× of it on the disk meshes of
+/// `../shared/meshes` (4.5k to 130k vertices) and on a generated 2M-face grid (peak
+/// 1.42 GiB); `memory_estimate_bounds_the_measured_peak` in `tests/resources.rs`
+/// re-measures it.
 pub fn estimate_peak_bytes(
     vertices: usize,
     edges: usize,
