@@ -95,7 +95,15 @@ fn halftunnel_maps_onto_a_disk_with_two_circular_holes() {
     assert_eq!(refactored, r.steps - r.symbolic_factorizations);
     let polish = r.polish.as_ref().expect("polish on by default");
     assert!(polish.converged);
-    assert!(polish.energy_history.windows(2).all(|w| w[1] <= w[0]));
+    // non-increasing up to round-off of the energy evaluation
+    assert!(
+        polish
+            .energy_history
+            .windows(2)
+            .all(|w| w[1] <= w[0] + 1e-12 * w[0].abs()),
+        "{:?}",
+        polish.energy_history
+    );
     // the polish minimizes exactly the E_C the metrics report (outer disk minus the holes)
     let metrics = planar_map_metrics(
         &mesh,
