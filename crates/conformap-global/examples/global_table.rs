@@ -117,7 +117,7 @@ fn sphere_table(names: &[String]) -> Res {
 }
 
 fn disk_table(names: &[String]) -> Res {
-    println!("| mesh | V | CEM uniformity → after Möbius | boost length | angle dist. before → after (°) | cross-ratio before / after | flips after | Möbius time |");
+    println!("| mesh | V | CEM uniformity → after Möbius | boost length | angle dist. before → after (°) | cross-ratio before / after | flips before / after | Möbius time |");
     println!("|---|---|---|---|---|---|---|---|");
     for name in names {
         let Some(mesh) = read(name) else { continue };
@@ -136,7 +136,7 @@ fn disk_table(names: &[String]) -> Res {
         let ca = planar_cross_ratio_distortion(&mesh, &cem.map)?;
         let cb = planar_cross_ratio_distortion(&mesh, &best.map)?;
         println!(
-            "| {name} | {} | {:.4e} → {:.4e} | {:.3} | {:.3} → {:.3} | {:.6} / {:.6} | {} | {:.2} s |",
+            "| {name} | {} | {:.4e} → {:.4e} | {:.3} | {:.3} → {:.3} | {:.6} / {:.6} | {} / {} | {:.2} s |",
             mesh.num_vertices(),
             best.report.uniformity_before,
             best.report.uniformity_after,
@@ -145,6 +145,7 @@ fn disk_table(names: &[String]) -> Res {
             b.angle_distortion_deg.mean,
             ca.mean_abs,
             cb.mean_abs,
+            a.flipped_faces,
             b.flipped_faces,
             t_mob
         );

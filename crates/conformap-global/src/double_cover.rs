@@ -10,7 +10,8 @@ use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::mobius::boost_sphere_point;
-use crate::sphere::{centre_vertex, regular_face_around, sphere_map, SphereOptions};
+use crate::source::{centre_vertex, regular_face_around};
+use crate::sphere::{sphere_map, SphereOptions};
 use crate::stereo::{cross, dot, normalize};
 use crate::{GlobalError, SphereReport};
 

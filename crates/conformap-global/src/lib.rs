@@ -49,10 +49,12 @@ mod energy;
 mod error;
 mod metrics;
 mod mobius;
+mod mobius_options;
 mod newton;
 mod objective;
 mod optimize;
 mod report;
+mod source;
 mod sphere;
 mod stats;
 mod stereo;
@@ -75,15 +77,19 @@ pub use metrics::{
 pub use mobius::{
     boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,
 };
+pub use mobius_options::{
+    MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL, MOBIUS_MAX_BOOST,
+    MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
+};
 pub use optimize::{
-    optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusObjective, MobiusOptions,
-    MobiusReport, SphereMobius, StartRecord, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL,
-    MOBIUS_MAX_BOOST, MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
+    optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusReport, SphereMobius,
+    StartRecord,
 };
 pub use report::{SphereReport, StageRecord, Timings};
+pub use source::sphere_source_face;
 pub use sphere::{
-    sphere_map, sphere_source_face, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION,
-    SPHERE_MAX_CORRECTIONS, SPHERE_MIN_GAIN,
+    sphere_map, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION, SPHERE_MAX_CORRECTIONS,
+    SPHERE_MIN_GAIN,
 };
 pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
 pub use stereo::{

@@ -19,9 +19,15 @@ const MAX_DAMPING_TRIES: usize = 40;
 /// An objective: value and gradient at a point.
 pub(crate) type EvalFn<'a> = dyn Fn(&[f64]) -> (f64, Vec<f64>) + 'a;
 
+/// An iterate closer than this (Euclidean, in the parameter's units: hyperbolic length) to
+/// an optimum already found stops its start as merged into that optimum: 1e-3, well inside
+/// Newton's quadratic basin on every mesh measured (it converges from 1 away), and far above
+/// the step tolerance, so a start that merges saves most of its iterations.
+pub(crate) const MERGE_TOL: f64 = 1e-3;
+
 /// Settings of [`minimize`].
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct NewtonSettings {
+pub(crate) struct NewtonSettings<'k> {
     /// Iteration cap.
     pub max_iter: usize,
     /// Stop when an accepted step is shorter than this (absolute, in the parameter's units:
@@ -29,6 +35,8 @@ pub(crate) struct NewtonSettings {
     pub step_tol: f64,
     /// Radius of the ball the iterate is kept in.
     pub radius: f64,
+    /// Optima found by earlier starts (see [`MERGE_TOL`]).
+    pub known: &'k [Vec<f64>],
 }
 
 /// Outcome of one local minimization.
@@ -39,6 +47,8 @@ pub(crate) struct LocalMin {
     pub iterations: usize,
     pub converged: bool,
     pub evaluations: usize,
+    /// Index into `known` of the optimum this start ran into, if any.
+    pub merged: Option<usize>,
 }
 
 /// Projects `x` onto the closed ball of radius `r`.
@@ -92,7 +102,7 @@ fn solve_spd(a: &[f64], b: &[f64], d: usize) -> Option<Vec<f64>> {
 
 /// Minimizes `eval` (value and gradient) from `x0` inside the ball of radius
 /// `settings.radius`.
-pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings) -> LocalMin {
+pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings<'_>) -> LocalMin {
     let d = x0.len();
     let mut x = x0.to_vec();
     project(&mut x, settings.radius);
@@ -101,6 +111,7 @@ pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings)
     let mut lambda = 0.0f64;
     let mut converged = false;
     let mut iterations = 0;
+    let mut merged = None;
     for _ in 0..settings.max_iter {
         iterations += 1;
         // Hessian by forward differences of the gradient, symmetrized
@@ -220,6 +231,18 @@ pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings)
             converged = true;
             break;
         }
+        merged = settings.known.iter().position(|k| {
+            k.iter()
+                .zip(&x)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum::<f64>()
+                .sqrt()
+                < MERGE_TOL
+        });
+        if merged.is_some() {
+            converged = true;
+            break;
+        }
     }
     LocalMin {
         x,
@@ -227,6 +250,7 @@ pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings)
         iterations,
         converged,
         evaluations,
+        merged,
     }
 }
 
@@ -275,6 +299,7 @@ mod tests {
             max_iter: 200,
             step_tol: 1e-12,
             radius: 10.0,
+            known: &[],
         };
         let r = minimize(&rosen, &[-1.2, 1.0], &s);
         assert!(r.converged);
