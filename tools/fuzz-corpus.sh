@@ -43,7 +43,7 @@ disk)
         { printf '\000'; cat "$f"; } >"$dir/obj0_$(basename "$f")"
         { printf '\002'; cat "$f"; } >"$dir/obj2_$(basename "$f")"
     done
-    for mode in 1 3 5 7 9 33 35 37 41; do
+    for mode in 1 3 5 9 11 13 17 25 33 67 75; do
         printf "\\$(printf %03o "$mode")\\004hello-disk-seed-$mode" >"$dir/grid_$mode"
     done
     ;;

@@ -3,7 +3,7 @@
 //! only when conformap breaks a promise (a panic inside conformap, or an `Ok` result that
 //! is inconsistent or not finite), which libFuzzer then reports as a crash.
 
-use conformap_disk::{cem, harmonic_arc_length, CemOptions, DiskProblem};
+use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
 use conformap_io::{read_mesh_from_bytes, read_raw_mesh_from_bytes, Format, IoError};
 use conformap_mesh::{repair, MeshError, RepairOptions, TriMesh, DROPPED};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
@@ -122,8 +122,8 @@ impl Bytes<'_> {
 fn grid_from_bytes(mode: u8, b: &mut Bytes<'_>) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let n = 1 + u32::from(b.byte() % 12);
     let h = 1.0 / f64::from(n);
-    // mode bits 3-4: jitter within the cell, up to a cell, or wild
-    let amp = h * [0.3, 1.0, 4.0, 0.0][usize::from((mode >> 3) & 3)];
+    // mode bits 4-5: jitter within the cell, up to a cell, wild, or none
+    let amp = h * [0.3, 1.0, 4.0, 0.0][usize::from((mode >> 4) & 3)];
     let mut p = Vec::new();
     for j in 0..=n {
         for i in 0..=n {
@@ -142,8 +142,8 @@ fn grid_from_bytes(mode: u8, b: &mut Bytes<'_>) -> (Vec<[f64; 3]>, Vec<[u32; 3]>
                 [[a, bb, d], [bb, c, d]]
             };
             for mut t in tris {
-                // mode bit 5: let the bytes drop and flip faces
-                let cmd = if mode & 32 != 0 { b.byte() } else { 0 };
+                // mode bit 6: let the bytes drop and flip faces
+                let cmd = if mode & 64 != 0 { b.byte() } else { 0 };
                 if cmd % 16 == 1 {
                     continue;
                 }
@@ -159,8 +159,9 @@ fn grid_from_bytes(mode: u8, b: &mut Bytes<'_>) -> (Vec<[f64; 3]>, Vec<[u32; 3]>
 
 /// The disk pipeline on a small mesh from `data`: the first byte chooses how to build the
 /// mesh (even: an OBJ in the rest; odd: a perturbed grid), whether to repair it first
-/// (bit 1) and the method (bit 2: harmonic, else CEM); then validation, `DiskProblem`, the
-/// map and its metrics. An `Ok` map and `Ok` metrics must be finite.
+/// (bit 1) and the method (bits 2-3: CEM, harmonic, CCEM-QN, CCEM; iterations capped);
+/// then validation, `DiskProblem`, the map and its metrics. An `Ok` map and `Ok` metrics
+/// must be finite.
 pub fn disk(data: &[u8]) {
     let Some((&mode, rest)) = data.split_first() else {
         return;
@@ -186,13 +187,15 @@ pub fn disk(data: &[u8]) {
     let Ok(mut problem) = DiskProblem::new(&mesh) else {
         return;
     };
-    let out = if mode & 4 != 0 {
-        harmonic_arc_length(&problem)
-    } else {
-        match cem(&mut problem, &CemOptions::DEFAULT.with_max_iter(5)) {
-            Ok(out) => out,
-            Err(_) => return,
-        }
+    let (method, cap) = match (mode >> 2) & 3 {
+        0 => (DiskMethod::Cem, 5),
+        1 => (DiskMethod::Harmonic, 1),
+        2 => (DiskMethod::CcemQn, 30),
+        _ => (DiskMethod::Ccem, 30),
+    };
+    let options = DiskOptions::DEFAULT.with_max_iter(Some(cap));
+    let Ok(out) = run_disk_method(&mut problem, method, &options) else {
+        return;
     };
     assert_eq!(out.map.len(), mesh.num_vertices());
     if let Some(v) = out.map.iter().position(|z| !z.is_finite()) {

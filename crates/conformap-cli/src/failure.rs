@@ -119,11 +119,12 @@ pub fn mesh_hint(e: &conformap_mesh::MeshError) -> Option<&'static str> {
              them changes the surface"
         }
         E::DuplicateFace { .. } => {
-            "rerun with --repair to drop exact duplicate faces (the first copy is kept)"
+            "`conformap disk --repair` (or `info --repair`) drops exact duplicate faces (the \
+             first copy is kept)"
         }
         E::UnreferencedVertex { .. } => {
-            "rerun with --repair to drop unreferenced vertices (--vertex-map FILE then \
-             relates output vertices to input ones)"
+            "`conformap disk --repair` (or `info --repair`) drops unreferenced vertices \
+             (--vertex-map FILE then relates output vertices to input ones)"
         }
         E::NonManifoldEdge { .. } => {
             "delete the extra faces on that edge or split it apart in a mesh editor (Blender: \
@@ -134,8 +135,8 @@ pub fn mesh_hint(e: &conformap_mesh::MeshError) -> Option<&'static str> {
              Edges) or delete one fan; no automatic repair is safe"
         }
         E::InconsistentOrientation { .. } => {
-            "rerun with --repair to re-orient the faces consistently (impossible only on a \
-             non-orientable surface such as a Möbius strip)"
+            "`conformap disk --repair` (or `info --repair`) re-orients the faces consistently \
+             (impossible only on a non-orientable surface such as a Möbius strip)"
         }
         _ => return None,
     })

@@ -90,14 +90,14 @@ fn every_defect_class_names_element_line_and_what_to_do() {
             "duplicate_face.obj",
             &[
                 "duplicate_face.obj:6: face 1 duplicates face 0",
-                "rerun with --repair to drop exact duplicate faces",
+                "`conformap disk --repair` (or `info --repair`) drops exact duplicate faces",
             ],
         ),
         (
             "unreferenced_vertex.obj",
             &[
                 "unreferenced_vertex.obj:4: vertex 2 is not used",
-                "rerun with --repair to drop unreferenced vertices",
+                "`conformap disk --repair` (or `info --repair`) drops unreferenced vertices",
             ],
         ),
         (
@@ -118,7 +118,7 @@ fn every_defect_class_names_element_line_and_what_to_do() {
             "inconsistent_orientation.obj",
             &[
                 "inconsistent_orientation.obj:7: faces 1 and 0 are inconsistently oriented",
-                "rerun with --repair to re-orient",
+                "`conformap disk --repair` (or `info --repair`) re-orients the faces",
             ],
         ),
         (
@@ -364,4 +364,41 @@ fn info_says_which_repairs_would_apply() {
     let o = conformap(&["info", s(&fixture("woody.obj")), "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["repairs_available"], serde_json::json!([]));
+}
+
+#[test]
+fn glb_defects_name_the_primitive_triangle_and_repair_too() {
+    let d = tmpdir("glb");
+    let (glb, out, rep) = (d.join("dirty.glb"), d.join("o.glb"), d.join("r.json"));
+    // the dirty disk as a GLB: its faces as they are (glTF drops the unreferenced vertex)
+    let raw = conformap_io::read_raw_mesh(fixture("bad/dirty_disk.obj")).unwrap();
+    conformap_io::write_flat(&glb, &raw.positions, &raw.faces).unwrap();
+    let o = conformap(&["disk", s(&glb), "-o", s(&out)]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    // face 24 duplicates face 10 (the first defect validation meets in the welded mesh)
+    assert!(
+        err.contains("dirty.glb (mesh 0, primitive 0, triangle 24): face 24 duplicates face 10"),
+        "{err}"
+    );
+    assert!(err.contains("hint: `conformap disk --repair`"), "{err}");
+    assert!(!out.exists());
+    let o = conformap(&[
+        "disk",
+        s(&glb),
+        "-o",
+        s(&out),
+        "--repair",
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = json(&rep)["repairs"].clone();
+    assert_eq!(
+        (r["duplicate_faces"].as_u64(), r["flipped_faces"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert_eq!(r["component_faces_dropped"], 1);
+    assert_eq!(r["unreferenced_vertices"], 0);
+    assert_eq!(json(&rep)["input"]["vertices"], 19);
 }

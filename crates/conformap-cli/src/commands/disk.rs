@@ -74,6 +74,11 @@ pub struct DiskArgs {
     /// Write a JSON report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Keep the folds of a `harmonic` or `cem` map (for comparison with the papers' plain
+    /// algorithms) instead of repairing them: by default every method's map is flip-free
+    /// (the repair is listed in the report's notes).
+    #[arg(long)]
+    pub keep_folds: bool,
     /// Exit with code 3 (writing nothing) if the solver did not converge.
     #[arg(long)]
     pub strict: bool,
@@ -187,7 +192,8 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
     let mut problem = DiskProblem::new(mesh).map_err(in_file)?;
     let options = DiskOptions::DEFAULT
         .with_max_iter(args.max_iter)
-        .with_tol(args.tol);
+        .with_tol(args.tol)
+        .with_keep_folds(args.keep_folds);
     let result = run_disk_method(&mut problem, args.method.library(), &options).map_err(in_file)?;
     if args.strict && !result.report.converged {
         return Err(Failure::Numerical(format!(
