@@ -3,11 +3,15 @@
 
 use std::fmt;
 use std::str::FromStr;
+use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 
 use crate::ccem_options::{CcemOptions, CcemVariant};
-use crate::{ccem, cem, harmonic_arc_length, CemOptions, DiskError, DiskMap, DiskProblem};
+use crate::cem::interior_residual;
+use crate::{
+    ccem, cem, harmonic_arc_length, unfold_disk_map, CemOptions, DiskError, DiskMap, DiskProblem,
+};
 
 /// A disk parameterization method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -77,6 +81,10 @@ pub struct DiskOptions {
     /// Options of CCEM (both variants; the variant is set by the method). Default:
     /// [`CcemOptions::DEFAULT`].
     pub ccem: CcemOptions,
+    /// Return the harmonic and CEM maps as computed even when they fold, instead of
+    /// passing them through [`unfold_disk_map`]. Default: `false` (every method returns a
+    /// flip-free map or an error; CCEM guards its boundary order itself and ignores this).
+    pub keep_folds: bool,
 }
 
 impl DiskOptions {
@@ -86,6 +94,7 @@ impl DiskOptions {
         tol: None,
         cem: CemOptions::DEFAULT,
         ccem: CcemOptions::DEFAULT,
+        keep_folds: false,
     };
 
     /// Sets [`Self::max_iter`].
@@ -109,6 +118,13 @@ impl DiskOptions {
         self
     }
 
+    /// Sets [`Self::keep_folds`].
+    #[must_use]
+    pub fn with_keep_folds(mut self, keep_folds: bool) -> Self {
+        self.keep_folds = keep_folds;
+        self
+    }
+
     /// Sets [`Self::ccem`].
     #[must_use]
     pub fn with_ccem(mut self, ccem: CcemOptions) -> Self {
@@ -117,11 +133,14 @@ impl DiskOptions {
     }
 }
 
-/// Runs `method` on a problem already prepared (the factorization is reused).
+/// Runs `method` on a problem already prepared (the factorization is reused). Harmonic
+/// and CEM maps that fold are made flip-free by [`unfold_disk_map`] unless
+/// [`DiskOptions::keep_folds`] is set.
 ///
 /// # Errors
 /// The method's errors (see [`cem`], [`ccem`]); [`DiskError::InvalidOption`] for a
-/// negative or non-finite tolerance.
+/// negative or non-finite tolerance; [`DiskError::Folded`] when a folded harmonic or CEM
+/// map cannot be repaired (boundary crowded below what f64 resolves).
 pub fn run_disk_method(
     problem: &mut DiskProblem<'_>,
     method: DiskMethod,
@@ -136,12 +155,13 @@ pub fn run_disk_method(
         }
     }
     match method {
-        DiskMethod::Harmonic => Ok(harmonic_arc_length(problem)),
+        DiskMethod::Harmonic => unfolded(problem, harmonic_arc_length(problem), options),
         DiskMethod::Cem => {
             let mut o = options.cem;
             o.max_iter = options.max_iter.unwrap_or(o.max_iter);
             o.tol = options.tol.unwrap_or(o.tol);
-            cem(problem, &o)
+            let out = cem(problem, &o)?;
+            unfolded(problem, out, options)
         }
         DiskMethod::Ccem | DiskMethod::CcemQn => {
             let variant = if method == DiskMethod::Ccem {
@@ -155,6 +175,34 @@ pub fn run_disk_method(
             ccem(problem, &o)
         }
     }
+}
+
+/// `out` passed through [`unfold_disk_map`] unless [`DiskOptions::keep_folds`]: a map that
+/// folds is replaced by its flip-free repair, whose energy is appended to the history (and
+/// made the returned iterate), with a note saying what was done.
+fn unfolded(
+    problem: &DiskProblem<'_>,
+    mut out: DiskMap,
+    options: &DiskOptions,
+) -> Result<DiskMap, DiskError> {
+    if options.keep_folds {
+        return Ok(out);
+    }
+    let t0 = Instant::now();
+    let u = unfold_disk_map(problem, &out.map)?;
+    let Some(note) = u.note() else {
+        return Ok(out);
+    };
+    let r = &mut out.report;
+    r.energy_history.push(problem.conformal_energy(&u.map));
+    r.best_iteration = r.energy_history.len() - 1;
+    r.notes.push(note);
+    out.map = u.map;
+    r.residual = interior_residual(problem, &out.map);
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    r.timings_ms.solve += ms;
+    r.timings_ms.total += ms;
+    Ok(out)
 }
 
 /// The disk map of `mesh` by `method`: prepares the problem ([`DiskProblem::new`]:

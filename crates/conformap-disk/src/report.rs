@@ -26,12 +26,16 @@ pub struct SolverReport {
     pub iterations: usize,
     /// Whether the stopping tolerance was met before the iteration cap.
     pub converged: bool,
-    /// Conformal energy `E_C` of every iterate, the initial map first.
+    /// Conformal energy `E_C` of every iterate, the initial map first; when the best
+    /// harmonic or CEM iterate folded, the energy of its flip-free repair
+    /// ([`crate::unfold_disk_map`]) is appended last.
     pub energy_history: Vec<f64>,
-    /// Index into `energy_history` of the iterate returned (the one of least energy).
+    /// Index into `energy_history` of the iterate returned: the one of least energy, or
+    /// the appended flip-free repair.
     pub best_iteration: usize,
-    /// Relative residual `‖L_II f_I + L_IB f_B‖∞ / ‖L_IB f_B‖∞` of the returned map's
-    /// interior solve.
+    /// Relative residual `‖L_II f_I + L_IB f_B‖∞ / ‖L_IB f_B‖∞` of the returned map, `L`
+    /// the problem's Laplacian (not small when the notes say the interior was re-solved
+    /// with a reserve operator).
     pub residual: f64,
     /// Number of sparse factorizations performed.
     pub factorizations: usize,

@@ -3,8 +3,8 @@
 //! weights), and a boundary out of order (fixed by putting it back in order).
 
 use conformap_disk::{
-    cem, unfold_disk_map, CemOptions, DiskError, DiskProblem, InteriorOperator, LaplacianKind,
-    ProblemOptions,
+    cem, run_disk_method, unfold_disk_map, CemOptions, DiskError, DiskMethod, DiskOptions,
+    DiskProblem, InteriorOperator, LaplacianKind, ProblemOptions,
 };
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
@@ -204,4 +204,36 @@ fn unfold_puts_a_backward_boundary_back_in_order() {
         unfold_disk_map(&problem, &bad),
         Err(DiskError::Folded { .. })
     ));
+}
+
+#[test]
+fn harmonic_and_cem_maps_that_fold_come_back_flip_free_unless_kept() {
+    // seeds found by searching the random grids: the plain arc-length harmonic map folds
+    // one face on seed 25, 20-iteration CEM three on seed 89
+    for (seed, method) in [(25, DiskMethod::Harmonic), (89, DiskMethod::Cem)] {
+        let (mesh, _) = random_problem(4, seed);
+        let mut problem = DiskProblem::new(&mesh).unwrap();
+        let keep = DiskOptions::DEFAULT.with_keep_folds(true);
+        let raw = run_disk_method(&mut problem, method, &keep).unwrap();
+        let folded = flipped(&mesh, &raw.map);
+        assert!(folded > 0, "{method} seed {seed}: the plain map folds");
+        let out = run_disk_method(&mut problem, method, &DiskOptions::DEFAULT).unwrap();
+        assert_eq!(flipped(&mesh, &out.map), 0, "{method} seed {seed}");
+        let r = &out.report;
+        assert_eq!(r.energy_history.len(), raw.report.energy_history.len() + 1);
+        assert_eq!(r.best_iteration, r.energy_history.len() - 1);
+        let e = problem.conformal_energy(&out.map);
+        assert!((r.energy_history[r.best_iteration] - e).abs() <= 1e-12 * e.abs());
+        assert!(
+            r.notes
+                .iter()
+                .any(|n| n.contains(&format!("the map folded {folded} faces"))),
+            "{:?}",
+            r.notes
+        );
+        // the boundary stays on the unit circle
+        for &v in &problem.partition().boundary {
+            assert!((out.map[v as usize].norm() - 1.0).abs() < 1e-12);
+        }
+    }
 }
