@@ -249,16 +249,15 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
                 Some(p) => notes.push(format!(
                     "BFGS preconditioned by the exact Hessian at the start ({:.0} ms){}",
                     p.ms,
-                    if p.shift > 0.0 {
-                        format!(" (shifted by {:.1e} to be positive definite)", p.shift)
+                    if p.modified > 0 {
+                        format!("; {} negative curvatures flipped", p.modified)
                     } else {
                         String::new()
                     }
                 )),
-                None => notes.push(
-                    "the Hessian at the start is not positive definite even shifted: plain BFGS"
-                        .into(),
-                ),
+                None => {
+                    notes.push("the Hessian at the start could not be formed: plain BFGS".into())
+                }
             }
         }
     }

@@ -95,8 +95,8 @@ pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, Pr
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
 pub use report::{
-    BoundaryReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport,
-    StepRecord, Timings,
+    BoundaryReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport, StepRecord,
+    Timings,
 };
 pub use schur::{SchurMode, DENSE_SCHUR_MAX_BYTES, EXPECTED_SCHUR_PRODUCTS};
 pub use unfold::{unfold_disk_map, Unfolded, UNFOLD_MIN_GAP};

@@ -199,51 +199,93 @@ impl<'a, 'm> Schur<'a, 'm> {
     }
 }
 
-/// Columns per parallel task of a dense product; below two tasks' worth the product runs
-/// on one thread (thread dispatch costs more than the memory-bound work it splits).
-const PRODUCT_COLUMNS_PER_TASK: usize = 256;
+/// Below this `n_B` a dense product runs on one thread (thread dispatch costs more than the
+/// memory-bound work it splits).
+const PARALLEL_PRODUCT_MIN: usize = 512;
 
-/// `A x` for a dense symmetric `A` (column-major): `(A x)_j` is column `j` · `x`, for the
-/// real and imaginary parts at once, with four independent partial sums per part so that
-/// the loop vectorizes; columns are split over the threads when `n_B` is large.
+/// `A x` for a dense symmetric `A` (column-major), reading only its lower triangle (half
+/// the memory traffic of a full product, which is what a product costs): column `j`
+/// contributes `Σ_{i≥j} a_ij x_i` to `y_j` and `a_ij x_j` to `y_i`, `i > j`, in one pass,
+/// for the real and imaginary parts at once, with four independent partial sums so that
+/// the loop vectorizes. Columns are split over the threads in ranges of equal triangle
+/// area, each thread summing into its own `y`.
 fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
     let nb = x.len();
     let re: Vec<f64> = x.iter().map(|z| z.re).collect();
     let im: Vec<f64> = x.iter().map(|z| z.im).collect();
-    let column = |col: &[f64]| -> Complex64 {
-        let (mut sr, mut si) = ([0.0f64; 4], [0.0f64; 4]);
-        let chunks = col.chunks_exact(4);
-        let tail = chunks.remainder();
-        for ((c, r), i) in chunks.zip(re.chunks_exact(4)).zip(im.chunks_exact(4)) {
-            for l in 0..4 {
-                sr[l] += c[l] * r[l];
-                si[l] += c[l] * i[l];
-            }
-        }
-        let base = nb - tail.len();
-        let (mut tr, mut ti) = (0.0, 0.0);
-        for (k, &c) in tail.iter().enumerate() {
-            tr += c * re[base + k];
-            ti += c * im[base + k];
-        }
-        Complex64::new(
-            (sr[0] + sr[1]) + (sr[2] + sr[3]) + tr,
-            (si[0] + si[1]) + (si[2] + si[3]) + ti,
-        )
-    };
-    if nb >= 2 * PRODUCT_COLUMNS_PER_TASK && rayon::current_num_threads() > 1 {
-        let mut out = vec![Complex64::new(0.0, 0.0); nb];
-        out.par_chunks_mut(PRODUCT_COLUMNS_PER_TASK)
-            .zip(a.par_chunks(PRODUCT_COLUMNS_PER_TASK * nb))
-            .for_each(|(o, cols)| {
-                for (y, col) in o.iter_mut().zip(cols.chunks_exact(nb)) {
-                    *y = column(col);
+    let columns = |cols: std::ops::Range<usize>| -> (Vec<f64>, Vec<f64>) {
+        let (mut yr, mut yi) = (vec![0.0; nb], vec![0.0; nb]);
+        for j in cols {
+            let col = &a[j * nb + j..(j + 1) * nb];
+            let (xr, xi) = (re[j], im[j]);
+            let (mut sr, mut si) = ([0.0f64; 4], [0.0f64; 4]);
+            // the diagonal entry: dot only
+            let (d, below) = (col[0], &col[1..]);
+            let rr = &re[j + 1..];
+            let ri = &im[j + 1..];
+            let (yr_b, yi_b) = (&mut yr[j + 1..], &mut yi[j + 1..]);
+            let n4 = below.len() / 4 * 4;
+            let (yr4, yr_t) = yr_b.split_at_mut(n4);
+            let (yi4, yi_t) = yi_b.split_at_mut(n4);
+            for ((((c, r), i), yrc), yic) in below[..n4]
+                .chunks_exact(4)
+                .zip(rr[..n4].chunks_exact(4))
+                .zip(ri[..n4].chunks_exact(4))
+                .zip(yr4.chunks_exact_mut(4))
+                .zip(yi4.chunks_exact_mut(4))
+            {
+                for l in 0..4 {
+                    sr[l] += c[l] * r[l];
+                    si[l] += c[l] * i[l];
+                    yrc[l] += c[l] * xr;
+                    yic[l] += c[l] * xi;
                 }
-            });
-        out
+            }
+            let (mut tr, mut ti) = (d * xr, d * xi);
+            for ((((&c, &r), &i), yrc), yic) in below[n4..]
+                .iter()
+                .zip(&rr[n4..])
+                .zip(&ri[n4..])
+                .zip(yr_t.iter_mut())
+                .zip(yi_t.iter_mut())
+            {
+                tr += c * r;
+                ti += c * i;
+                *yrc += c * xr;
+                *yic += c * xi;
+            }
+            yr[j] += (sr[0] + sr[1]) + (sr[2] + sr[3]) + tr;
+            yi[j] += (si[0] + si[1]) + (si[2] + si[3]) + ti;
+        }
+        (yr, yi)
+    };
+    let threads = rayon::current_num_threads();
+    let (yr, yi) = if nb >= PARALLEL_PRODUCT_MIN && threads > 1 {
+        // column j costs nb − j: cut where the remaining area is (t/T) of the triangle
+        let total = (nb * (nb + 1) / 2) as f64;
+        let cut = |t: usize| -> usize {
+            let rest = total * (1.0 - t as f64 / threads as f64);
+            // columns c.. hold (nb − c)(nb − c + 1)/2 entries
+            let m = ((8.0 * rest + 1.0).sqrt() - 1.0) / 2.0;
+            nb - (m.round() as usize).min(nb)
+        };
+        let parts: Vec<(Vec<f64>, Vec<f64>)> = (0..threads)
+            .into_par_iter()
+            .map(|t| columns(cut(t)..cut(t + 1)))
+            .collect();
+        let (mut yr, mut yi) = (vec![0.0; nb], vec![0.0; nb]);
+        for (pr, pi) in parts {
+            yr.iter_mut().zip(pr).for_each(|(a, b)| *a += b);
+            yi.iter_mut().zip(pi).for_each(|(a, b)| *a += b);
+        }
+        (yr, yi)
     } else {
-        a.chunks_exact(nb).map(column).collect()
-    }
+        columns(0..nb)
+    };
+    yr.into_iter()
+        .zip(yi)
+        .map(|(r, i)| Complex64::new(r, i))
+        .collect()
 }
 
 /// Forms `A = L_BB − L_IBᵀ L_II⁻¹ L_IB` column-major with one restricted forward solve

@@ -30,6 +30,7 @@ use sprs::CsMat;
 use crate::OperatorError;
 
 mod inverse_gram;
+mod nested_dissection;
 
 pub use inverse_gram::InverseGram;
 
@@ -40,6 +41,9 @@ pub enum Ordering {
     /// Approximate minimum degree (default).
     #[default]
     Amd,
+    /// Nested dissection by breadth-first level structures (see
+    /// [`Ordering::NestedDissection`]'s module notes in the facade docs).
+    NestedDissection,
     /// No reordering.
     Identity,
     /// A caller-given permutation: `perm[k]` is the row eliminated at step `k`.
@@ -179,9 +183,12 @@ impl Cholesky {
             // symmetric matrix to one triangle and then fails on full storage (measured:
             // "not positive definite" on an SPD L_II); an explicit identity permutation
             // takes the normal path.
-            Ordering::Identity | Ordering::Custom(_) => {
+            Ordering::Identity | Ordering::Custom(_) | Ordering::NestedDissection => {
                 let p: Vec<usize> = match &options.ordering {
                     Ordering::Custom(p) => p.clone(),
+                    Ordering::NestedDissection => {
+                        nested_dissection::nested_dissection(mat.symbolic())
+                    }
                     _ => (0..n).collect(),
                 };
                 if p.len() != n {
@@ -462,6 +469,134 @@ impl DenseCholesky {
             l.transpose(),
             x.rb_mut(),
             par,
+        );
+    }
+}
+
+/// A symmetric positive definite approximation `M = P L |D| Lᵀ Pᵀ` of a dense symmetric
+/// matrix `A = P L D Lᵀ Pᵀ` (Bunch–Kaufman, `D` block diagonal with 1×1 and 2×2 blocks),
+/// with every eigenvalue of `D`'s blocks replaced by its absolute value, at least
+/// `floor`: the modified factorization of Cheng and Higham (1998) for preconditioning
+/// Newton-type steps on a non-convex function. One factorization, never fails; equals `A`
+/// where `A` is positive definite enough.
+#[derive(Debug, Clone)]
+pub struct DenseModifiedLblt {
+    n: usize,
+    l: Vec<f64>,
+    diag: Vec<f64>,
+    subdiag: Vec<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    /// Eigenvalues of `D`'s blocks that were negative or below the floor.
+    pub modified: usize,
+}
+
+impl DenseModifiedLblt {
+    /// Factors `a` (`n × n`, column-major, lower triangle read) on `threads` threads
+    /// (0 = all). `floor ≥ 0` is absolute.
+    ///
+    /// # Errors
+    /// [`OperatorError::NotSquareCsc`] if `a.len() != n²`.
+    pub fn factor(
+        mut a: Vec<f64>,
+        n: usize,
+        threads: usize,
+        floor: f64,
+    ) -> Result<Self, OperatorError> {
+        use faer::linalg::cholesky::lblt::factor as bk;
+        if a.len() != n * n {
+            return Err(OperatorError::NotSquareCsc {
+                rows: n,
+                cols: a.len() / n.max(1),
+            });
+        }
+        let par = par_for(threads);
+        let mut subdiag = vec![0.0; n];
+        let mut perm = vec![0usize; n];
+        let mut perm_inv = vec![0usize; n];
+        if n > 0 {
+            let params = Default::default();
+            let scratch = bk::cholesky_in_place_scratch::<usize, f64>(n, par, params);
+            let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
+                OperatorError::Factorization("out of memory for the workspace".into())
+            })?;
+            let m = MatMut::from_column_major_slice_mut(&mut a, n, n);
+            let sub = faer::ColMut::from_slice_mut(&mut subdiag).as_diagonal_mut();
+            bk::cholesky_in_place(
+                m,
+                sub,
+                &mut perm,
+                &mut perm_inv,
+                par,
+                MemStack::new(&mut mem),
+                params,
+            );
+        }
+        let mut diag: Vec<f64> = (0..n).map(|i| a[i * n + i]).collect();
+        let mut modified = 0;
+        let mut i = 0;
+        while i < n {
+            if i + 1 < n && subdiag[i] != 0.0 {
+                let (p, b, c): (f64, f64, f64) = (diag[i], subdiag[i], diag[i + 1]);
+                let phi = 0.5 * (2.0 * b).atan2(p - c);
+                let (sn, cs) = phi.sin_cos();
+                let l1 = p * cs * cs + 2.0 * b * cs * sn + c * sn * sn;
+                let l2 = p * sn * sn - 2.0 * b * cs * sn + c * cs * cs;
+                let fix = |l: f64, modified: &mut usize| {
+                    if !(l > floor) {
+                        *modified += 1;
+                    }
+                    l.abs().max(floor)
+                };
+                let (m1, m2) = (fix(l1, &mut modified), fix(l2, &mut modified));
+                diag[i] = m1 * cs * cs + m2 * sn * sn;
+                diag[i + 1] = m1 * sn * sn + m2 * cs * cs;
+                subdiag[i] = (m1 - m2) * cs * sn;
+                i += 2;
+            } else {
+                if !(diag[i] > floor) {
+                    modified += 1;
+                }
+                diag[i] = diag[i].abs().max(floor);
+                if !diag[i].is_finite() {
+                    diag[i] = 1.0;
+                }
+                i += 1;
+            }
+        }
+        Ok(Self {
+            n,
+            l: a,
+            diag,
+            subdiag,
+            perm,
+            perm_inv,
+            modified,
+        })
+    }
+
+    /// Solves `M x = b` in place for one right-hand side.
+    ///
+    /// # Panics
+    /// If `x.len()` is not the dimension (a caller bug).
+    pub fn solve_in_place(&self, x: &mut [f64]) {
+        use faer::linalg::cholesky::lblt::solve as bks;
+        let n = self.n;
+        assert_eq!(x.len(), n, "right-hand side has the wrong length");
+        if n == 0 {
+            return;
+        }
+        let scratch = bks::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq);
+        let mut mem = MemBuffer::new(scratch);
+        bks::solve_in_place_with_conj(
+            faer::MatRef::from_column_major_slice(&self.l, n, n),
+            faer::ColRef::from_slice(&self.diag).as_diagonal(),
+            faer::ColRef::from_slice(&self.subdiag).as_diagonal(),
+            Conj::No,
+            faer::perm::PermRef::new_checked(&self.perm, &self.perm_inv, n),
+            MatMut::from_column_major_slice_mut(x, n, 1),
+            Par::Seq,
+            MemStack::new(&mut mem),
         );
     }
 }

@@ -29,8 +29,8 @@ mod lu;
 mod mean_value;
 
 pub use cholesky::{
-    relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky, FactorStats,
-    InverseGram, Ordering,
+    relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
+    DenseModifiedLblt, FactorStats, InverseGram, Ordering,
 };
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
