@@ -168,9 +168,8 @@ impl RepairLog {
     /// One phrase per repair that changed something, for a person, e.g. `1 duplicate face
     /// dropped` (empty if none did).
     pub fn actions(&self) -> Vec<String> {
-        let plural = |n: usize, one: &str, many: &str| {
-            format!("{n} {}", if n == 1 { one } else { many })
-        };
+        let plural =
+            |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
         let mut out = Vec::new();
         if self.duplicate_faces > 0 {
             let what = plural(self.duplicate_faces, "duplicate face", "duplicate faces");
