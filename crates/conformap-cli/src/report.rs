@@ -43,8 +43,13 @@ pub struct StageTimings {
     pub read: f64,
     /// Assembling the Laplacian and its blocks.
     pub assemble: f64,
-    /// Sparse factorizations.
+    /// Sparse factorizations (symbolic analysis included).
     pub factor: f64,
+    /// Of `factor`, the symbolic analysis (fill-reducing ordering and structure) of the
+    /// interior Laplacian `L_II`: `tools/bench`'s `analyse` stage (its `factor` stage is
+    /// `factor − analyse`, its `iterate` stage is `solve`). 0 for commands that do not
+    /// factor one `L_II`.
+    pub analyse: f64,
     /// Everything else inside the solver.
     pub solve: f64,
     /// Computing the quality metrics.

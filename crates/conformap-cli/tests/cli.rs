@@ -77,6 +77,10 @@ fn disk_maps_spothead_and_metrics_agree_with_the_report() {
             "timing {key}"
         );
     }
+    // the bench's `analyse` stage is part of `factor`
+    let t = &r["timings_ms"];
+    let analyse = t["analyse"].as_f64().unwrap();
+    assert!(analyse > 0.0 && analyse <= t["factor"].as_f64().unwrap());
     // judge the written files: both agree with the report to 1e-9 relative
     for param in [&out, &flat] {
         let o = conformap(&["metrics", s(&fixture("spothead.obj")), s(param), "--json"]);

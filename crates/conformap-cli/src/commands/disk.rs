@@ -195,6 +195,7 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         .with_tol(args.tol)
         .with_keep_folds(args.keep_folds);
     let result = run_disk_method(&mut problem, args.method.library(), &options).map_err(in_file)?;
+    let analyse_ms = problem.interior_factor().stats().analyse_ms;
     if args.strict && !result.report.converged {
         return Err(Failure::Numerical(format!(
             "{} did not converge in {} iterations (--strict); nothing written",
@@ -231,6 +232,7 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         read: read_ms,
         assemble: s.timings_ms.assemble,
         factor: s.timings_ms.factor,
+        analyse: analyse_ms,
         solve: s.timings_ms.solve,
         metrics: metrics_ms,
         write: write_ms,

@@ -104,6 +104,7 @@ pub fn run(
         read: read_ms,
         assemble: tm.assemble,
         factor: tm.factor,
+        analyse: 0.0,
         solve: tm.total - tm.assemble - tm.factor,
         metrics: metrics_ms,
         write: write_ms,

@@ -308,6 +308,7 @@ pub fn run(args: &MobiusArgs) -> Result<(), Failure> {
         read: read_ms,
         assemble: 0.0,
         factor: 0.0,
+        analyse: 0.0,
         solve: mobius.time_ms,
         metrics: metrics_ms,
         write: write_ms,

@@ -128,6 +128,7 @@ pub fn run(args: &SphereArgs) -> Result<(), Failure> {
         read: read_ms,
         assemble: s.timings_ms.assemble,
         factor: s.timings_ms.factor,
+        analyse: 0.0,
         solve: s.timings_ms.solve + mobius_ms,
         metrics: metrics_ms,
         write: write_ms,
