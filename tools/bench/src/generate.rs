@@ -1,4 +1,12 @@
-//! Generated benchmark meshes: a bumpy height field over the unit square.
+//! Generated benchmark meshes, two families that bracket the boundary lengths of real inputs:
+//!
+//! - `gen:N`: a bumpy height field over the unit square, boundary `n_B ≈ 4 √V` — the longest
+//!   boundary a disk-like mesh of that size has (every grid row ends on it), the worst case of
+//!   the dense boundary route;
+//! - `cap:N`: a bumpy closed surface (a cube subdivided and pushed onto a sphere with radial
+//!   bumps) with the faces near one pole removed, boundary `n_B ≈ 1.4 √V` — the shape of a
+//!   scan cut open at a hole (`igea_open.obj`: 310 boundary vertices at 130k, `0.86 √V`;
+//!   `hand.obj`: 246 at 53k, `1.07 √V`).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -53,6 +61,115 @@ pub fn generated_obj(size: &str) -> Result<PathBuf, String> {
                 writeln!(w, "f {a} {b} {d}\nf {b} {c} {d}").map_err(io)?;
             }
         }
+    }
+    w.flush().map_err(io)?;
+    drop(w);
+    std::fs::rename(&tmp, &path).map_err(|e| e.to_string())?;
+    Ok(path)
+}
+
+/// Writes (once, cached in the temp directory) an OBJ of a bumpy closed surface with one
+/// hole, about `faces` triangles, and returns its path.
+///
+/// The six faces of the cube `[-n, n]³` are cut into `n × n` squares of side 2 each (vertices on the
+/// cube's edges shared through their integer lattice coordinates), every point is pushed
+/// onto the sphere and moved radially by a smooth bump field (`±6 %` of the radius), each
+/// square is split along its shorter diagonal, and the faces whose centroid lies above
+/// `z = 0.8` (a cap of 10 % of the area) are removed.
+pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
+    use std::collections::HashMap;
+    let faces = parse_size(size).ok_or_else(|| format!("cannot read size `{size}`"))?;
+    // 12 n² faces on the whole cube with n squares a side, 90 % of them kept
+    let half = ((faces as f64 / 0.9 / 12.0).sqrt().round() as i64).max(2);
+    let path = std::env::temp_dir().join(format!("conformap-bench-cap-{half}.obj"));
+    if path.is_file() {
+        return Ok(path);
+    }
+    let n = half; // lattice coordinates run over -n..=n in steps of 2 on a cube of side 2n
+    let mut index: HashMap<[i64; 3], u32> = HashMap::new();
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut vertex = |c: [i64; 3]| -> u32 {
+        *index.entry(c).or_insert_with(|| {
+            let (x, y, z) = (c[0] as f64, c[1] as f64, c[2] as f64);
+            let r = (x * x + y * y + z * z).sqrt();
+            let (x, y, z) = (x / r, y / r, z / r);
+            let bump = 1.0
+                + 0.04 * (5.0 * x).sin() * (4.0 * y).cos() * (3.0 * z + 1.0).cos()
+                + 0.02 * (13.0 * x + 7.0 * z).sin();
+            points.push([bump * x, bump * y, bump * z]);
+            (points.len() - 1) as u32
+        })
+    };
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    // each cube face: a fixed axis `a` at sign `s`, and two running axes (u, v) ordered so
+    // that u × v points outward
+    for a in 0..3usize {
+        for s in [-1i64, 1] {
+            let (u, v) = if s > 0 {
+                ((a + 1) % 3, (a + 2) % 3)
+            } else {
+                ((a + 2) % 3, (a + 1) % 3)
+            };
+            let at = |i: i64, j: i64| -> [i64; 3] {
+                let mut c = [0i64; 3];
+                c[a] = s * n;
+                c[u] = -n + 2 * i;
+                c[v] = -n + 2 * j;
+                c
+            };
+            for j in 0..n {
+                for i in 0..n {
+                    let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                    let q = q.map(&mut vertex);
+                    tris.push([q[0], q[1], q[2]]);
+                    tris.push([q[0], q[2], q[3]]);
+                }
+            }
+        }
+    }
+    // shorter diagonal: re-split a square where the other diagonal is shorter
+    let d2 = |p: u32, q: u32| -> f64 {
+        let (p, q) = (points[p as usize], points[q as usize]);
+        (0..3).map(|k| (p[k] - q[k]).powi(2)).sum()
+    };
+    for pair in tris.chunks_exact_mut(2) {
+        let (a, b, c, d) = (pair[0][0], pair[0][1], pair[0][2], pair[1][2]);
+        if d2(b, d) < d2(a, c) {
+            pair[0] = [a, b, d];
+            pair[1] = [b, c, d];
+        }
+    }
+    let kept: Vec<[u32; 3]> = tris
+        .into_iter()
+        .filter(|t| t.iter().map(|&i| points[i as usize][2]).sum::<f64>() / 3.0 <= 0.8)
+        .collect();
+    // renumber the vertices that are still referenced, in order of first use
+    let mut new_id = vec![u32::MAX; points.len()];
+    let mut order = Vec::new();
+    for t in &kept {
+        for &i in t {
+            if new_id[i as usize] == u32::MAX {
+                new_id[i as usize] = order.len() as u32;
+                order.push(i);
+            }
+        }
+    }
+    let tmp = path.with_extension("tmp");
+    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
+    let mut w = std::io::BufWriter::new(file);
+    let io = |e: std::io::Error| e.to_string();
+    writeln!(
+        w,
+        "# conformap-bench generated bumpy sphere with a cap removed, cube {half} squares a side"
+    )
+    .map_err(io)?;
+    for &i in &order {
+        let p = points[i as usize];
+        writeln!(w, "v {} {} {}", p[0], p[1], p[2]).map_err(io)?;
+    }
+    for t in &kept {
+        let t = t.map(|i| new_id[i as usize] + 1);
+        writeln!(w, "f {} {} {}", t[0], t[1], t[2]).map_err(io)?;
     }
     w.flush().map_err(io)?;
     drop(w);

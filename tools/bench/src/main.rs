@@ -1,14 +1,16 @@
 //! Benchmarks of `conformap disk` stages on real and generated meshes.
 //!
 //! ```text
-//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH... [gen:250k gen:1m ...]
+//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH... [gen:250k gen:1m cap:1m ...]
 //! ```
 //!
 //! The default method is `conformap disk`'s, `ccem-qn`. Stages: see [`stages`].
 //! Each (mesh, run) executes in a child process of this binary, so that the peak resident
 //! set size (VmHWM) is that run's alone; the parent prints a Markdown table of medians.
 //! `gen:N` (N like `250k`, `1m`, `2m`) is a bumpy height field over a square with about N
-//! faces, generated in code, written once to a temporary OBJ and then read like any file.
+//! faces, generated in code, written once to a temporary OBJ and then read like any file;
+//! `cap:N` is a bumpy closed surface with one small hole (a short boundary, like a scan cut
+//! open). See [`generate`].
 
 mod generate;
 mod stages;
@@ -20,7 +22,7 @@ use crate::stages::StageRow;
 
 fn usage() -> ! {
     eprintln!(
-        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|gen:500k|gen:1m|gen:2m ...]\n       \
+        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|gen:1m|cap:1m ...]\n       \
          conformap-bench --child MESH METHOD   (internal)"
     );
     std::process::exit(2)
@@ -67,14 +69,17 @@ fn main() {
     );
     println!("{}", StageRow::header());
     for input in inputs {
-        let path = match input.strip_prefix("gen:") {
-            Some(size) => match generate::generated_obj(size) {
-                Ok(p) => p,
-                Err(e) => {
-                    eprintln!("{input}: {e}");
-                    continue;
-                }
-            },
+        let generated = if let Some(size) = input.strip_prefix("gen:") {
+            Some(generate::generated_obj(size))
+        } else {
+            input.strip_prefix("cap:").map(generate::generated_cap_obj)
+        };
+        let path = match generated {
+            Some(Ok(p)) => p,
+            Some(Err(e)) => {
+                eprintln!("{input}: {e}");
+                continue;
+            }
             None => PathBuf::from(&input),
         };
         let mut rows = Vec::new();
