@@ -4,7 +4,7 @@
 libigl's map is the usual baseline: boundary vertices to the circle by arc length
 (`map_vertices_to_circle`), then one harmonic solve (`harmonic`, k = 1): one factorization,
 no boundary optimization. conformap's time is taken from its JSON report as
-assemble + factor + solve (file reading and writing excluded on both sides).
+assemble + analyse + factor + solve (file reading and writing excluded on both sides).
 
 Usage:
     python3 -m venv /tmp/iglenv && /tmp/iglenv/bin/pip install libigl numpy scipy
@@ -89,7 +89,7 @@ def main():
                 break
             r = json.load(open(rep))
             t = r["timings_ms"]
-            ours.append(t["assemble"] + t["factor"] + t["solve"])
+            ours.append(t["assemble"] + t.get("analyse", 0.0) + t["factor"] + t["solve"])
             ec_ours = r["metrics"]["conformal_energy"]
         igl_ms = statistics.median(times)
         our_ms = statistics.median(ours) if ours else float("nan")

@@ -43,6 +43,11 @@ impl Bfgs {
     }
 
     /// Whether any pair is stored (else the direction is the steepest descent).
+    /// Pairs stored.
+    pub fn len(&self) -> usize {
+        self.pairs.len()
+    }
+
     pub fn is_empty(&self) -> bool {
         self.pairs.is_empty()
     }

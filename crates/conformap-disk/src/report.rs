@@ -99,6 +99,10 @@ pub struct LineSearchReport {
     pub gradient_fallbacks: usize,
     /// Curvature pairs the quasi-Newton update refused (`sᵀy` not positive).
     pub qn_pairs_skipped: usize,
+    /// Quasi-Newton restarts: a Wolfe step whose decrease met the tolerance while BFGS
+    /// held two or more pairs emptied the pairs and went on; the run stops only when the
+    /// first steps after a restart meet it too (see `CcemOptions::tol`).
+    pub qn_restarts: usize,
     /// Every accepted step, when [`crate::CcemOptions::record_steps`] is set.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub steps: Vec<StepRecord>,

@@ -230,6 +230,33 @@ fn alligator_guard_keeps_a_valid_map() {
 }
 
 #[test]
+fn repaired_start_is_preconditioned_and_restarts_confirm_the_stop() {
+    // Angenent's boundary on the alligator steps backwards at the crowded limbs, so the
+    // start is repaired; the Hessian at that start still preconditions BFGS, and a
+    // tolerance stop with a stale model restarts it once before stopping
+    let mesh = fixture("alligator.obj");
+    let mut problem = DiskProblem::new(&mesh).expect("disk");
+    let out = ccem(&mut problem, &CcemOptions::DEFAULT).expect("ccem");
+    let r = &out.report;
+    let b = r.boundary.as_ref().expect("boundary report");
+    assert!(b.start_repaired_gaps > 0, "{b:?}");
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("preconditioned by the exact Hessian")),
+        "{:?}",
+        r.notes
+    );
+    let ls = r.line_search.as_ref().expect("line search report");
+    assert!(ls.qn_restarts >= 1, "{ls:?}");
+    assert!(r.converged);
+    // 151 iterations without the preconditioner, 49 with it, to the same E_C
+    assert!(r.iterations <= 80, "{} iterations", r.iterations);
+    let e = *r.energy_history.last().expect("history");
+    assert!(e <= 1.0738351841e-2 * (1.0 + 1e-9), "E_C {e}");
+}
+
+#[test]
 fn dense_implicit_and_starts_reach_the_same_minimum() {
     let mesh = fixture("woody.obj");
     let mut problem = DiskProblem::new(&mesh).expect("disk");

@@ -75,13 +75,31 @@ pub fn generated_obj(size: &str) -> Result<PathBuf, String> {
 /// cube's edges shared through their integer lattice coordinates), every point is pushed
 /// onto the sphere and moved radially by a smooth bump field (`±6 %` of the radius), each
 /// square is split along its shorter diagonal, and the faces whose centroid lies above
-/// `z = 0.8` (a cap of 10 % of the area) are removed.
+/// `z = 0.8` (a cap of 10 % of the area) are removed. `size@Z` (e.g. `1m@0`) cuts at
+/// `z = Z` instead (`-0.9 < Z < 0.95`): a lower cut leaves a longer boundary around a
+/// smaller surface (`@0`, a hemisphere: `n_B ≈ 3.1 √V`), which measures where the dense
+/// boundary route stops paying.
 pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
     use std::collections::HashMap;
+    let (size, cut) = match size.split_once('@') {
+        Some((s, z)) => (
+            s,
+            z.parse::<f64>()
+                .ok()
+                .filter(|z| *z > -0.9 && *z < 0.95)
+                .ok_or_else(|| format!("cannot read the cut `{z}` (a number in (-0.9, 0.95))"))?,
+        ),
+        None => (size, 0.8),
+    };
     let faces = parse_size(size).ok_or_else(|| format!("cannot read size `{size}`"))?;
-    // 12 n² faces on the whole cube with n squares a side, 90 % of them kept
-    let half = ((faces as f64 / 0.9 / 12.0).sqrt().round() as i64).max(2);
-    let path = std::env::temp_dir().join(format!("conformap-bench-cap-{half}.obj"));
+    // 12 n² faces on the whole cube with n squares a side, a share (1 + cut) / 2 of them kept
+    let kept_share = (1.0 + cut) / 2.0;
+    let half = ((faces as f64 / kept_share / 12.0).sqrt().round() as i64).max(2);
+    let path = std::env::temp_dir().join(if cut == 0.8 {
+        format!("conformap-bench-cap-{half}.obj")
+    } else {
+        format!("conformap-bench-cap-{half}-at-{cut}.obj")
+    });
     if path.is_file() {
         return Ok(path);
     }
@@ -141,7 +159,7 @@ pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
     }
     let kept: Vec<[u32; 3]> = tris
         .into_iter()
-        .filter(|t| t.iter().map(|&i| points[i as usize][2]).sum::<f64>() / 3.0 <= 0.8)
+        .filter(|t| t.iter().map(|&i| points[i as usize][2]).sum::<f64>() / 3.0 <= cut)
         .collect();
     // renumber the vertices that are still referenced, in order of first use
     let mut new_id = vec![u32::MAX; points.len()];
@@ -160,7 +178,7 @@ pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
     let io = |e: std::io::Error| e.to_string();
     writeln!(
         w,
-        "# conformap-bench generated bumpy sphere with a cap removed, cube {half} squares a side"
+        "# conformap-bench generated bumpy sphere cut at z = {cut}, cube {half} squares a side"
     )
     .map_err(io)?;
     for &i in &order {
