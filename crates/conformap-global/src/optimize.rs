@@ -26,8 +26,8 @@ use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::energy::{
-    check_len, planar_face_areas, region_mask, region_share_from_areas, sphere_face_areas,
-    surface_shares, uniformity_from_areas,
+    check_len, planar_face_areas, planar_signed_area, region_mask, region_share_from_areas,
+    sphere_face_areas, surface_shares, uniformity_from_areas,
 };
 use crate::mobius::{DiskAutomorphism, Mobius, MobiusCoefficients};
 #[allow(unused_imports)] // the module docs link to EMPHASIZE_MAX_AREA_SCALE
@@ -95,6 +95,11 @@ pub struct MobiusReport {
     pub converged: bool,
     /// Wall-clock milliseconds.
     pub time_ms: f64,
+    /// `Some(t)` when the optimal boost would have inverted faces of a disk map that
+    /// crowds triangles near f64 resolution and was scaled by `t < 1` (the largest scale
+    /// that inverts none the input did not); `None` otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flip_limited: Option<f64>,
 }
 
 /// A sphere map moved by its optimal Möbius transformation.
@@ -381,7 +386,7 @@ pub fn optimize_disk_mobius(
     let eval = |x: &[f64]| prob.eval(x, target);
     let (v, best_start, starts, evaluations, converged) =
         run_starts(&eval, 2, prep.radius, options, prep.mask.is_some());
-    let moved = prob.moved(&v);
+    let (v, moved, flip_limit) = keep_orientation(mesh, map, &prob, v);
     let automorphism = DiskAutomorphism::from_vector([v[0], v[1]]);
     let areas_before = planar_face_areas(mesh, map);
     let areas_after = planar_face_areas(mesh, &moved);
@@ -395,11 +400,59 @@ pub fn optimize_disk_mobius(
         (starts, best_start, evaluations, converged),
         t0,
     );
+    let report = MobiusReport {
+        flip_limited: flip_limit,
+        ..report
+    };
     Ok(DiskMobius {
         map: moved,
         automorphism,
         report,
     })
+}
+
+/// Faces of a planar map with non-positive signed area (inverted or collapsed).
+fn planar_inverted(mesh: &TriMesh, map: &[Complex64]) -> usize {
+    mesh.faces()
+        .iter()
+        .filter(|t| !(planar_signed_area(t.map(|v| map[v as usize])) > 0.0))
+        .count()
+}
+
+/// Bisection steps of [`keep_orientation`] (the boost is found to `2⁻⁴⁰` of its length).
+const FLIP_BISECTION_STEPS: usize = 40;
+
+/// The optimal boost `v`, shortened if its map inverts faces the input map did not: a
+/// Möbius map is a bijection of the disk, but where a map crowds triangles near f64
+/// resolution (maze.obj's corridors, boundary gaps at the 1e-13 floor) moving the points
+/// re-rounds them and a long boost can invert some (maze: 2,393 faces at the optimum of
+/// length 2.5). The boost is then scaled by the largest `t ∈ [0, 1]` (bisection) whose map
+/// inverts no more faces than the input. Returns the boost, its map and `Some(t)` when it
+/// was shortened.
+fn keep_orientation(
+    mesh: &TriMesh,
+    map: &[Complex64],
+    prob: &DiskProblemM<'_>,
+    v: Vec<f64>,
+) -> (Vec<f64>, Vec<Complex64>, Option<f64>) {
+    let moved = prob.moved(&v);
+    let allowed = planar_inverted(mesh, map);
+    if planar_inverted(mesh, &moved) <= allowed {
+        return (v, moved, None);
+    }
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..FLIP_BISECTION_STEPS {
+        let t = 0.5 * (lo + hi);
+        let vt: Vec<f64> = v.iter().map(|x| x * t).collect();
+        if planar_inverted(mesh, &prob.moved(&vt)) <= allowed {
+            lo = t;
+        } else {
+            hi = t;
+        }
+    }
+    let vt: Vec<f64> = v.iter().map(|x| x * lo).collect();
+    let moved = prob.moved(&vt);
+    (vt, moved, Some(lo))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -449,5 +502,6 @@ fn finish_report(
         evaluations,
         converged,
         time_ms: t0.elapsed().as_secs_f64() * 1e3,
+        flip_limited: None,
     }
 }

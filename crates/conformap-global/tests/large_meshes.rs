@@ -63,15 +63,23 @@ fn class_c_sphere_maps() {
     }
 }
 
-/// Expected differences: CEM maps whose crowded parts hold image triangles near or below
-/// f64 resolution (alligator's limbs, maze's corridors), where moving the points by any map
-/// re-rounds the tiny edges, so the invariant cross-ratios change by round-off far above
-/// 1e-9. Measured mean |Δ|: alligator 1.7e-4, maze 4.0e-2; every other mesh ≤ 4e-15.
-const CROWDED: [(&str, f64); 2] = [("alligator.obj", 1e-3), ("maze.obj", 0.1)];
+/// Expected differences: maps whose crowded parts hold image triangles near or below f64
+/// resolution (alligator's limbs, maze's corridors, the 7 boundary gaps of igea_open's
+/// CCEM map held at 1e-13 rad), where moving the points by any map re-rounds the tiny
+/// edges, so the invariant cross-ratios change by round-off above 1e-9. Measured mean |Δ|
+/// (CEM / CCEM-QN): alligator 8.4e-4 / 2.2e-5, maze – / 2.4e-11, igea_open 1.7e-16 /
+/// 2.9e-9; every other mesh ≤ 5e-15. maze's raw CEM map folds 3,260 faces (its corridors
+/// crowd below what f64 resolves): cross-ratios of folded triangles say nothing, and only
+/// its uniformity is checked.
+const CROWDED: [(&str, f64); 3] = [
+    ("alligator.obj", 2e-3),
+    ("maze.obj", 1e-6),
+    ("igea_open.obj", 1e-6),
+];
 
 #[test]
 #[ignore = "large meshes: run in release with --ignored"]
-fn class_a_mobius_lowers_uniformity_of_cem() {
+fn class_a_mobius_lowers_uniformity_of_cem_and_ccem() {
     for name in [
         "woody.obj",
         "alligator.obj",
@@ -89,26 +97,69 @@ fn class_a_mobius_lowers_uniformity_of_cem() {
         let mesh = conformap_testkit::read_plain_obj(&path).unwrap();
         let mut problem = conformap_disk::DiskProblem::new(&mesh).unwrap();
         let cem = conformap_disk::cem(&mut problem, &conformap_disk::CemOptions::DEFAULT).unwrap();
-        let best = optimize_disk_mobius(
+        let ccem = conformap_disk::compute_disk_map(
             &mesh,
-            &cem.map,
-            &MobiusObjective::Uniform,
-            &MobiusOptions::DEFAULT,
+            conformap_disk::DiskMethod::CcemQn,
+            &conformap_disk::DiskOptions::DEFAULT,
         )
         .unwrap();
-        let r = &best.report;
-        assert!(
-            r.uniformity_after < r.uniformity_before,
-            "{name}: {} -> {}",
-            r.uniformity_before,
-            r.uniformity_after
-        );
-        let a = planar_cross_ratio_distortion(&mesh, &cem.map).unwrap();
-        let b = planar_cross_ratio_distortion(&mesh, &best.map).unwrap();
-        let tol = CROWDED
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map_or(1e-9, |(_, t)| *t);
-        assert!((a.mean_abs - b.mean_abs).abs() < tol, "{name}: {a:?} {b:?}");
+        for (method, map) in [("cem", &cem.map), ("ccem-qn", &ccem.map)] {
+            let best = optimize_disk_mobius(
+                &mesh,
+                map,
+                &MobiusObjective::Uniform,
+                &MobiusOptions::DEFAULT,
+            )
+            .unwrap();
+            let r = &best.report;
+            assert!(
+                r.uniformity_after < r.uniformity_before,
+                "{name} {method}: {} -> {}",
+                r.uniformity_before,
+                r.uniformity_after
+            );
+            // the moved map inverts no face the given one did not (maze: the optimal boost
+            // would invert 2,393 crowded faces and is shortened)
+            let inverted = |m: &[num_complex::Complex64]| {
+                mesh.faces()
+                    .iter()
+                    .filter(|t| {
+                        let (u, v) = (
+                            m[t[1] as usize] - m[t[0] as usize],
+                            m[t[2] as usize] - m[t[0] as usize],
+                        );
+                        !(u.re * v.im - u.im * v.re > 0.0)
+                    })
+                    .count()
+            };
+            assert!(
+                inverted(&best.map) <= inverted(map),
+                "{name} {method}: {} inverted faces after, {} before (flip limit {:?})",
+                inverted(&best.map),
+                inverted(map),
+                r.flip_limited
+            );
+            let a = planar_cross_ratio_distortion(&mesh, map).unwrap();
+            let b = planar_cross_ratio_distortion(&mesh, &best.map).unwrap();
+            eprintln!(
+                "{name} {method}: uniformity {:.4e} -> {:.4e}, cross-ratio mean change {:.1e}, \
+                 flip limit {:?}",
+                r.uniformity_before,
+                r.uniformity_after,
+                (a.mean_abs - b.mean_abs).abs(),
+                r.flip_limited
+            );
+            if name == "maze.obj" && method == "cem" {
+                continue;
+            }
+            let tol = CROWDED
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(1e-9, |(_, t)| *t);
+            assert!(
+                (a.mean_abs - b.mean_abs).abs() < tol,
+                "{name} {method}: {a:?} {b:?}"
+            );
+        }
     }
 }

@@ -356,8 +356,14 @@ pub fn run(args: &MobiusArgs) -> Result<(), Failure> {
             mobius.uniformity_before, mobius.uniformity_after
         ),
     };
+    let limited = match mobius.flip_limited {
+        Some(t) => format!(
+            " (boost shortened to {t:.3} of the optimum: a longer one inverts crowded faces)"
+        ),
+        None => String::new(),
+    };
     eprintln!(
-        "{}: optimal {} Möbius map: {what}; {:.0} ms",
+        "{}: optimal {} Möbius map: {what}{limited}; {:.0} ms",
         args.mesh.display(),
         mobius.domain,
         timings.total
