@@ -25,4 +25,4 @@ bench *ARGS:
 
 # regenerate golden reports on purpose
 bless:
-    CONFORMAP_BLESS=1 cargo test -p conformap-tests --test golden
+    CONFORMAP_BLESS=1 cargo test -p conformap-cli --test golden
