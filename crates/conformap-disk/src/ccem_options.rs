@@ -65,7 +65,7 @@ pub enum CcemStart {
     Angenent,
 }
 
-/// Options of [`ccem`].
+/// Options of [`crate::ccem`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct CcemOptions {
@@ -101,7 +101,7 @@ pub struct CcemOptions {
     pub start: CcemStart,
     /// Quasi-Newton memory (curvature pairs kept; 0 = all). Default: [`CCEM_QN_MEMORY`] (0).
     pub qn_memory: usize,
-    /// Record every accepted step in [`LineSearchReport::steps`] (for checking the Wolfe
+    /// Record every accepted step in [`crate::LineSearchReport::steps`] (for checking the Wolfe
     /// conditions). Default: `false`.
     pub record_steps: bool,
     /// Precondition the quasi-Newton variant with the exact Hessian of `E_C(θ)` at the

@@ -60,7 +60,7 @@ impl MobiusObjective {
     }
 }
 
-/// Options of [`optimize_sphere_mobius`] and [`optimize_disk_mobius`].
+/// Options of [`crate::optimize_sphere_mobius`] and [`crate::optimize_disk_mobius`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct MobiusOptions {
