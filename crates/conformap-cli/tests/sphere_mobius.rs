@@ -219,3 +219,46 @@ fn disk_mobius_of_a_cem_map() {
     // vt stored with 17 digits: the cross-ratios survive the file round trip to ~1e-12
     assert!((cr.0 - cr.1).abs() < 1e-9, "{cr:?}");
 }
+
+#[test]
+fn mobius_reads_a_crowded_flat_map_and_keeps_it_flip_free() {
+    // alligator's default disk map holds boundary gaps at the 1e-13 floor: its flat mesh
+    // has triangles of area 1e-28, which a 3D mesh reader refuses as degenerate; as a map
+    // it is valid, and `mobius` must take it (as `metrics` does) and add no inverted face
+    let d = tmpdir("crowded");
+    let (uv, flat) = (d.join("uv.obj"), d.join("flat.obj"));
+    let mesh = fixture("alligator.obj");
+    let o = conformap(&["disk", s(&mesh), "-o", s(&uv), "--flat", s(&flat)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info = conformap(&["info", s(&flat)]);
+    assert_eq!(
+        info.status.code(),
+        Some(1),
+        "the flat mesh is degenerate as a 3D mesh"
+    );
+    for param in [&flat, &uv] {
+        let (out, rep) = (d.join("moved.obj"), d.join("r.json"));
+        let o = conformap(&[
+            "mobius",
+            s(&mesh),
+            s(param),
+            "--domain",
+            "disk",
+            "--objective",
+            "uniform",
+            "-o",
+            s(&out),
+            "--report",
+            s(&rep),
+        ]);
+        assert!(o.status.success(), "{}: {}", param.display(), stderr(&o));
+        let r = json(&rep);
+        let m = &r["metrics"];
+        assert_eq!(m["flipped_faces"], 0, "{}", param.display());
+        let (before, after) = (
+            m["uniformity_energy_before"].as_f64().expect("number"),
+            m["uniformity_energy"].as_f64().expect("number"),
+        );
+        assert!(after < before, "{before} -> {after}");
+    }
+}

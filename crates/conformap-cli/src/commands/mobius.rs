@@ -113,36 +113,63 @@ fn read_region(path: &Path, faces: usize) -> Result<Vec<usize>, Failure> {
     Ok(region)
 }
 
-/// The PARAM mesh, checked against MESH.
-fn read_param(
-    args: &MobiusArgs,
-    mesh: &conformap_mesh::TriMesh,
-) -> Result<conformap_io::LoadedMesh, Failure> {
-    let param = conformap_io::read_mesh(&args.param)?;
-    let pm = &param.mesh;
-    if pm.num_vertices() != mesh.num_vertices() || pm.num_faces() != mesh.num_faces() {
+/// The map read from PARAM: its positions and, when it has one per vertex, its texture
+/// coordinates.
+struct Param {
+    positions: Vec<[f64; 3]>,
+    uv: Option<Vec<[f64; 2]>>,
+}
+
+/// The PARAM mesh, checked against MESH. It is read without geometric validation (as
+/// `conformap metrics` reads it): a valid map crowds triangles far below the
+/// degenerate-area threshold of a 3D mesh (armadillo's sphere map has chord triangles of
+/// area 2e-14, maze's disk map far smaller), so only its connectivity must match the
+/// mesh's; non-finite values are refused by the optimization, which names the vertex.
+fn read_param(args: &MobiusArgs, mesh: &conformap_mesh::TriMesh) -> Result<Param, Failure> {
+    let param = conformap_io::read_raw_mesh(&args.param)?;
+    let (pv, pf) = (param.positions.len(), param.faces.len());
+    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
         return Err(Failure::input(format!(
             "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
              mesh's vertices and faces",
             args.param.display(),
-            pm.num_vertices(),
-            pm.num_faces(),
+            pv,
+            pf,
             args.mesh.display(),
             mesh.num_vertices(),
             mesh.num_faces()
         )));
     }
-    if let Some(face) = (0..mesh.num_faces()).find(|&f| pm.faces()[f] != mesh.faces()[f]) {
+    if let Some(face) = (0..mesh.num_faces()).find(|&f| param.faces[f] != mesh.faces()[f]) {
         return Err(Failure::input(format!(
             "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
              mesh's faces in the same order",
             args.param.display(),
-            pm.faces()[face],
+            param.faces[face],
             args.mesh.display(),
             mesh.faces()[face]
         )));
     }
-    Ok(param)
+    let uv = match param.uv {
+        Some(uv) => {
+            let mut all = Vec::with_capacity(uv.len());
+            for (vertex, t) in uv.into_iter().enumerate() {
+                let Some(t) = t else {
+                    return Err(Failure::input(format!(
+                        "{}: vertex {vertex} has no texture coordinate",
+                        args.param.display()
+                    )));
+                };
+                all.push(t);
+            }
+            Some(all)
+        }
+        None => None,
+    };
+    Ok(Param {
+        positions: param.positions,
+        uv,
+    })
 }
 
 /// Inverse of [`equirectangular_uv`].
@@ -205,8 +232,7 @@ pub fn run(args: &MobiusArgs) -> Result<(), Failure> {
                 ),
                 None => (
                     param
-                        .mesh
-                        .positions()
+                        .positions
                         .iter()
                         .map(|p| Complex64::new(p[0], p[1]))
                         .collect(),
@@ -256,11 +282,11 @@ pub fn run(args: &MobiusArgs) -> Result<(), Failure> {
             (uv, flat, best.report, m, metrics_ms, from)
         }
         Domain::Sphere => {
-            let on_sphere = param.mesh.positions().iter().all(|p| {
+            let on_sphere = param.positions.iter().all(|p| {
                 ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() <= MAP_RADIUS_TOL
             });
             let (points, from): (Vec<[f64; 3]>, &str) = match (&param.uv, on_sphere) {
-                (_, true) => (param.mesh.positions().to_vec(), "sphere positions"),
+                (_, true) => (param.positions.clone(), "sphere positions"),
                 (Some(uv), false) => (
                     uv.iter().map(|&t| from_equirectangular(t)).collect(),
                     "equirectangular texture coordinates",
