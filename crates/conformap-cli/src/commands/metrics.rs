@@ -29,32 +29,7 @@ pub struct MetricsArgs {
 pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
-    // the map is read without validation: a valid map may crowd triangles far below the
-    // degenerate-area threshold of a 3D mesh; only its connectivity must match the mesh's
-    let param = conformap_io::read_raw_mesh(&args.param)?;
-    let (pv, pf) = (param.positions.len(), param.faces.len());
-    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
-        return Err(Failure::input(format!(
-            "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
-             mesh's vertices and faces",
-            args.param.display(),
-            pv,
-            pf,
-            args.mesh.display(),
-            mesh.num_vertices(),
-            mesh.num_faces()
-        )));
-    }
-    if let Some(face) = (0..mesh.num_faces()).find(|&f| param.faces[f] != mesh.faces()[f]) {
-        return Err(Failure::input(format!(
-            "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
-             mesh's faces in the same order",
-            args.param.display(),
-            param.faces[face],
-            args.mesh.display(),
-            mesh.faces()[face]
-        )));
-    }
+    let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
     let (map, source): (Vec<Complex64>, &str) = match &param.uv {
         Some(uv) => {
             let mut map = Vec::with_capacity(uv.len());

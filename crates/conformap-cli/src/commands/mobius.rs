@@ -120,36 +120,11 @@ struct Param {
     uv: Option<Vec<[f64; 2]>>,
 }
 
-/// The PARAM mesh, checked against MESH. It is read without geometric validation (as
-/// `conformap metrics` reads it): a valid map crowds triangles far below the
-/// degenerate-area threshold of a 3D mesh (armadillo's sphere map has chord triangles of
-/// area 2e-14, maze's disk map far smaller), so only its connectivity must match the
-/// mesh's; non-finite values are refused by the optimization, which names the vertex.
+/// The PARAM mesh, checked against MESH ([`crate::commands::read_map_file`]: connectivity,
+/// not geometry); non-finite values are refused by the optimization, which names the
+/// vertex.
 fn read_param(args: &MobiusArgs, mesh: &conformap_mesh::TriMesh) -> Result<Param, Failure> {
-    let param = conformap_io::read_raw_mesh(&args.param)?;
-    let (pv, pf) = (param.positions.len(), param.faces.len());
-    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
-        return Err(Failure::input(format!(
-            "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
-             mesh's vertices and faces",
-            args.param.display(),
-            pv,
-            pf,
-            args.mesh.display(),
-            mesh.num_vertices(),
-            mesh.num_faces()
-        )));
-    }
-    if let Some(face) = (0..mesh.num_faces()).find(|&f| param.faces[f] != mesh.faces()[f]) {
-        return Err(Failure::input(format!(
-            "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
-             mesh's faces in the same order",
-            args.param.display(),
-            param.faces[face],
-            args.mesh.display(),
-            mesh.faces()[face]
-        )));
-    }
+    let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
     let uv = match param.uv {
         Some(uv) => {
             let mut all = Vec::with_capacity(uv.len());

@@ -11,6 +11,42 @@ use std::path::Path;
 
 use crate::failure::Failure;
 
+/// Reads a map file (`PARAM` of `metrics` and `mobius`) without geometric validation: a
+/// valid map crowds triangles far below the degenerate-area threshold of a 3D mesh
+/// (alligator's disk map: area 1e-28; armadillo's sphere map: chord triangles of 2e-14),
+/// so only its connectivity must match `mesh`'s, vertex for vertex and face for face.
+pub fn read_map_file(
+    param: &Path,
+    mesh_path: &Path,
+    mesh: &conformap_mesh::TriMesh,
+) -> Result<conformap_io::RawMesh, Failure> {
+    let raw = conformap_io::read_raw_mesh(param)?;
+    let (pv, pf) = (raw.positions.len(), raw.faces.len());
+    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
+        return Err(Failure::input(format!(
+            "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
+             mesh's vertices and faces",
+            param.display(),
+            pv,
+            pf,
+            mesh_path.display(),
+            mesh.num_vertices(),
+            mesh.num_faces()
+        )));
+    }
+    if let Some(face) = (0..mesh.num_faces()).find(|&f| raw.faces[f] != mesh.faces()[f]) {
+        return Err(Failure::input(format!(
+            "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
+             mesh's faces in the same order",
+            param.display(),
+            raw.faces[face],
+            mesh_path.display(),
+            mesh.faces()[face]
+        )));
+    }
+    Ok(raw)
+}
+
 /// Prints `text` and a newline to stdout; a closed pipe (`conformap info m.obj | head`) is
 /// not an error worth a panic, so write errors are ignored.
 pub fn say(text: &str) {
