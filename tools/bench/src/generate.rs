@@ -3,6 +3,9 @@
 //! - `gen:N`: a bumpy height field over the unit square, boundary `n_B ≈ 4 √V` — the longest
 //!   boundary a disk-like mesh of that size has (every grid row ends on it), the worst case of
 //!   the dense boundary route;
+//! - `disk:N`: the same bumps over the unit disk (concentric rings, near-equilateral
+//!   triangles), boundary `n_B ≈ 3.5 √V` — as long as the square's nearly, but without
+//!   corners;
 //! - `cap:N`: a bumpy closed surface (a cube subdivided and pushed onto a sphere with radial
 //!   bumps) with the faces near one pole removed, boundary `n_B ≈ 1.4 √V` — the shape of a
 //!   scan cut open at a hole (`igea_open.obj`: 310 boundary vertices at 130k, `0.86 √V`;
@@ -188,6 +191,41 @@ pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
     for t in &kept {
         let t = t.map(|i| new_id[i as usize] + 1);
         writeln!(w, "f {} {} {}", t[0], t[1], t[2]).map_err(io)?;
+    }
+    w.flush().map_err(io)?;
+    drop(w);
+    std::fs::rename(&tmp, &path).map_err(|e| e.to_string())?;
+    Ok(path)
+}
+
+/// Writes (once, cached in the temp directory) an OBJ of the unit disk in concentric rings
+/// (`conformap_testkit::flat_disk(rings, 6)`, `6 rings² ≈ faces` triangles) lifted by the
+/// bump field of [`generated_obj`], and returns its path.
+pub fn generated_disk_obj(size: &str) -> Result<PathBuf, String> {
+    let faces = parse_size(size).ok_or_else(|| format!("cannot read size `{size}`"))?;
+    let rings = ((faces as f64 / 6.0).sqrt().round() as usize).max(2);
+    let path = std::env::temp_dir().join(format!("conformap-bench-disk-{rings}.obj"));
+    if path.is_file() {
+        return Ok(path);
+    }
+    let mesh = conformap_testkit::flat_disk(rings, 6);
+    let tmp = path.with_extension("tmp");
+    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
+    let mut w = std::io::BufWriter::new(file);
+    let io = |e: std::io::Error| e.to_string();
+    writeln!(
+        w,
+        "# conformap-bench generated height field over the unit disk, {rings} rings"
+    )
+    .map_err(io)?;
+    for p in mesh.positions() {
+        // the square's field, on [0, 1]² ⊃ the disk mapped from [-1, 1]²
+        let (x, y) = ((p[0] + 1.0) / 2.0, (p[1] + 1.0) / 2.0);
+        let z = 0.15 * (6.0 * x).sin() * (5.0 * y).cos() + 0.05 * (17.0 * x + 11.0 * y).sin();
+        writeln!(w, "v {} {} {z}", p[0], p[1]).map_err(io)?;
+    }
+    for t in mesh.faces() {
+        writeln!(w, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1).map_err(io)?;
     }
     w.flush().map_err(io)?;
     drop(w);

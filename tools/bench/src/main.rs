@@ -9,7 +9,8 @@
 //! set size (VmHWM) is that run's alone; the parent prints a Markdown table of medians.
 //! `gen:N` (N like `250k`, `1m`, `2m`) is a bumpy height field over a square with about N
 //! faces, generated in code, written once to a temporary OBJ and then read like any file;
-//! `cap:N` is a bumpy closed surface with one small hole (a short boundary, like a scan cut
+//! `disk:N` the same bumps over the unit disk (no corners); `cap:N` is a bumpy closed
+//! surface with one small hole (a short boundary, like a scan cut
 //! open). See [`generate`].
 
 mod generate;
@@ -22,7 +23,7 @@ use crate::stages::StageRow;
 
 fn usage() -> ! {
     eprintln!(
-        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|gen:1m|cap:1m ...]\n       \
+        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|disk:1m|cap:1m ...]\n       \
          conformap-bench --child MESH METHOD   (internal)"
     );
     std::process::exit(2)
@@ -71,6 +72,8 @@ fn main() {
     for input in inputs {
         let generated = if let Some(size) = input.strip_prefix("gen:") {
             Some(generate::generated_obj(size))
+        } else if let Some(size) = input.strip_prefix("disk:") {
+            Some(generate::generated_disk_obj(size))
         } else {
             input.strip_prefix("cap:").map(generate::generated_cap_obj)
         };
