@@ -27,6 +27,35 @@ fn parse_size(s: &str) -> Option<usize> {
     num.parse::<f64>().ok().map(|v| (v * mul) as usize)
 }
 
+/// The bump field of the height fields, on `[0, 1]²`.
+fn bump(x: f64, y: f64) -> f64 {
+    0.15 * (6.0 * x).sin() * (5.0 * y).cos() + 0.05 * (17.0 * x + 11.0 * y).sin()
+}
+
+/// Writes a plain `v`/`f` OBJ (0-based `faces`) to `path` through a temporary sibling, so
+/// that a cached file is never half written.
+fn write_obj(
+    path: &std::path::Path,
+    header: &str,
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+) -> Result<(), String> {
+    let tmp = path.with_extension("tmp");
+    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
+    let mut w = std::io::BufWriter::new(file);
+    let io = |e: std::io::Error| e.to_string();
+    writeln!(w, "# {header}").map_err(io)?;
+    for p in positions {
+        writeln!(w, "v {} {} {}", p[0], p[1], p[2]).map_err(io)?;
+    }
+    for t in faces {
+        writeln!(w, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1).map_err(io)?;
+    }
+    w.flush().map_err(io)?;
+    drop(w);
+    std::fs::rename(&tmp, path).map_err(|e| e.to_string())
+}
+
 /// Writes (once, cached in the temp directory) an OBJ of an `n × n` grid with
 /// `2 n² ≈ faces` triangles over the unit square lifted by a smooth bump field, and returns
 /// its path. The triangulation alternates diagonals so that it stays Delaunay-like.
@@ -37,37 +66,28 @@ pub fn generated_obj(size: &str) -> Result<PathBuf, String> {
     if path.is_file() {
         return Ok(path);
     }
-    let tmp = path.with_extension("tmp");
-    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
-    let mut w = std::io::BufWriter::new(file);
     let h = 1.0 / n as f64;
-    let io = |e: std::io::Error| e.to_string();
-    writeln!(
-        w,
-        "# conformap-bench generated height field, {n} x {n} squares"
-    )
-    .map_err(io)?;
+    let mut positions = Vec::with_capacity((n + 1) * (n + 1));
     for j in 0..=n {
         for i in 0..=n {
             let (x, y) = (i as f64 * h, j as f64 * h);
-            let z = 0.15 * (6.0 * x).sin() * (5.0 * y).cos() + 0.05 * (17.0 * x + 11.0 * y).sin();
-            writeln!(w, "v {x} {y} {z}").map_err(io)?;
+            positions.push([x, y, bump(x, y)]);
         }
     }
-    let id = |i: usize, j: usize| j * (n + 1) + i + 1;
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut faces = Vec::with_capacity(2 * n * n);
     for j in 0..n {
         for i in 0..n {
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
             if (i + j) % 2 == 0 {
-                writeln!(w, "f {a} {b} {c}\nf {a} {c} {d}").map_err(io)?;
+                faces.extend([[a, b, c], [a, c, d]]);
             } else {
-                writeln!(w, "f {a} {b} {d}\nf {b} {c} {d}").map_err(io)?;
+                faces.extend([[a, b, d], [b, c, d]]);
             }
         }
     }
-    w.flush().map_err(io)?;
-    drop(w);
-    std::fs::rename(&tmp, &path).map_err(|e| e.to_string())?;
+    let header = format!("conformap-bench generated height field, {n} x {n} squares");
+    write_obj(&path, &header, &positions, &faces)?;
     Ok(path)
 }
 
@@ -175,26 +195,12 @@ pub fn generated_cap_obj(size: &str) -> Result<PathBuf, String> {
             }
         }
     }
-    let tmp = path.with_extension("tmp");
-    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
-    let mut w = std::io::BufWriter::new(file);
-    let io = |e: std::io::Error| e.to_string();
-    writeln!(
-        w,
-        "# conformap-bench generated bumpy sphere cut at z = {cut}, cube {half} squares a side"
-    )
-    .map_err(io)?;
-    for &i in &order {
-        let p = points[i as usize];
-        writeln!(w, "v {} {} {}", p[0], p[1], p[2]).map_err(io)?;
-    }
-    for t in &kept {
-        let t = t.map(|i| new_id[i as usize] + 1);
-        writeln!(w, "f {} {} {}", t[0], t[1], t[2]).map_err(io)?;
-    }
-    w.flush().map_err(io)?;
-    drop(w);
-    std::fs::rename(&tmp, &path).map_err(|e| e.to_string())?;
+    let positions: Vec<[f64; 3]> = order.iter().map(|&i| points[i as usize]).collect();
+    let faces: Vec<[u32; 3]> = kept.iter().map(|t| t.map(|i| new_id[i as usize])).collect();
+    let header = format!(
+        "conformap-bench generated bumpy sphere cut at z = {cut}, cube {half} squares a side"
+    );
+    write_obj(&path, &header, &positions, &faces)?;
     Ok(path)
 }
 
@@ -209,26 +215,14 @@ pub fn generated_disk_obj(size: &str) -> Result<PathBuf, String> {
         return Ok(path);
     }
     let mesh = conformap_testkit::flat_disk(rings, 6);
-    let tmp = path.with_extension("tmp");
-    let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
-    let mut w = std::io::BufWriter::new(file);
-    let io = |e: std::io::Error| e.to_string();
-    writeln!(
-        w,
-        "# conformap-bench generated height field over the unit disk, {rings} rings"
-    )
-    .map_err(io)?;
-    for p in mesh.positions() {
-        // the square's field, on [0, 1]² ⊃ the disk mapped from [-1, 1]²
-        let (x, y) = ((p[0] + 1.0) / 2.0, (p[1] + 1.0) / 2.0);
-        let z = 0.15 * (6.0 * x).sin() * (5.0 * y).cos() + 0.05 * (17.0 * x + 11.0 * y).sin();
-        writeln!(w, "v {} {} {z}", p[0], p[1]).map_err(io)?;
-    }
-    for t in mesh.faces() {
-        writeln!(w, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1).map_err(io)?;
-    }
-    w.flush().map_err(io)?;
-    drop(w);
-    std::fs::rename(&tmp, &path).map_err(|e| e.to_string())?;
+    // the square's field, the disk's [-1, 1]² mapped onto [0, 1]²
+    let positions: Vec<[f64; 3]> = mesh
+        .positions()
+        .iter()
+        .map(|p| [p[0], p[1], bump((p[0] + 1.0) / 2.0, (p[1] + 1.0) / 2.0)])
+        .collect();
+    let header =
+        format!("conformap-bench generated height field over the unit disk, {rings} rings");
+    write_obj(&path, &header, &positions, mesh.faces())?;
     Ok(path)
 }

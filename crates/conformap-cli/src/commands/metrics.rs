@@ -31,19 +31,12 @@ pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
     let mesh = &loaded.mesh;
     let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
     let (map, source): (Vec<Complex64>, &str) = match &param.uv {
-        Some(uv) => {
-            let mut map = Vec::with_capacity(uv.len());
-            for (vertex, t) in uv.iter().enumerate() {
-                let Some(t) = t else {
-                    return Err(Failure::input(format!(
-                        "{}: vertex {vertex} has no texture coordinate",
-                        args.param.display()
-                    )));
-                };
-                map.push(Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0));
-            }
-            (map, "texture coordinates")
-        }
+        Some(uv) => (
+            uv.iter()
+                .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
+                .collect(),
+            "texture coordinates",
+        ),
         None => (
             param
                 .positions

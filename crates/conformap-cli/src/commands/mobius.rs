@@ -113,40 +113,6 @@ fn read_region(path: &Path, faces: usize) -> Result<Vec<usize>, Failure> {
     Ok(region)
 }
 
-/// The map read from PARAM: its positions and, when it has one per vertex, its texture
-/// coordinates.
-struct Param {
-    positions: Vec<[f64; 3]>,
-    uv: Option<Vec<[f64; 2]>>,
-}
-
-/// The PARAM mesh, checked against MESH ([`crate::commands::read_map_file`]: connectivity,
-/// not geometry); non-finite values are refused by the optimization, which names the
-/// vertex.
-fn read_param(args: &MobiusArgs, mesh: &conformap_mesh::TriMesh) -> Result<Param, Failure> {
-    let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
-    let uv = match param.uv {
-        Some(uv) => {
-            let mut all = Vec::with_capacity(uv.len());
-            for (vertex, t) in uv.into_iter().enumerate() {
-                let Some(t) = t else {
-                    return Err(Failure::input(format!(
-                        "{}: vertex {vertex} has no texture coordinate",
-                        args.param.display()
-                    )));
-                };
-                all.push(t);
-            }
-            Some(all)
-        }
-        None => None,
-    };
-    Ok(Param {
-        positions: param.positions,
-        uv,
-    })
-}
-
 /// Inverse of [`equirectangular_uv`].
 fn from_equirectangular(uv: [f64; 2]) -> [f64; 3] {
     let lon = std::f64::consts::TAU * uv[0] - std::f64::consts::PI;
@@ -182,7 +148,9 @@ pub fn run(args: &MobiusArgs) -> Result<(), Failure> {
     let t = Instant::now();
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
-    let param = read_param(args, mesh)?;
+    // connectivity checked, geometry not; non-finite values are refused by the
+    // optimization, which names the vertex
+    let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
     let objective = match (&args.objective, &args.region) {
         (Objective::Emphasize, Some(path)) => MobiusObjective::Emphasize {
             region: read_region(path, mesh.num_faces())?,

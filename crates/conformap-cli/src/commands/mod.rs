@@ -15,11 +15,14 @@ use crate::failure::Failure;
 /// valid map crowds triangles far below the degenerate-area threshold of a 3D mesh
 /// (alligator's disk map: area 1e-28; armadillo's sphere map: chord triangles of 2e-14),
 /// so only its connectivity must match `mesh`'s, vertex for vertex and face for face.
+///
+/// Texture coordinates, when the file has them, must cover every vertex (the error names
+/// the first that has none).
 pub fn read_map_file(
     param: &Path,
     mesh_path: &Path,
     mesh: &conformap_mesh::TriMesh,
-) -> Result<conformap_io::RawMesh, Failure> {
+) -> Result<MapFile, Failure> {
     let raw = conformap_io::read_raw_mesh(param)?;
     let (pv, pf) = (raw.positions.len(), raw.faces.len());
     if pv != mesh.num_vertices() || pf != mesh.num_faces() {
@@ -44,7 +47,36 @@ pub fn read_map_file(
             mesh.faces()[face]
         )));
     }
-    Ok(raw)
+    let uv = match raw.uv {
+        Some(uv) => Some(
+            uv.into_iter()
+                .enumerate()
+                .map(|(vertex, t)| {
+                    t.ok_or_else(|| {
+                        Failure::input(format!(
+                            "{}: vertex {vertex} has no texture coordinate",
+                            param.display()
+                        ))
+                    })
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        None => None,
+    };
+    Ok(MapFile {
+        positions: raw.positions,
+        uv,
+    })
+}
+
+/// A map read by [`read_map_file`]: its positions and, when the file has them, one texture
+/// coordinate per vertex.
+pub struct MapFile {
+    /// Vertex positions as written (a flat map's `(u, v, 0)`, a sphere map's points, or
+    /// the 3D mesh beside texture coordinates).
+    pub positions: Vec<[f64; 3]>,
+    /// Texture coordinates, one per vertex.
+    pub uv: Option<Vec<[f64; 2]>>,
 }
 
 /// Prints `text` and a newline to stdout; a closed pipe (`conformap info m.obj | head`) is
