@@ -63,6 +63,15 @@ pub enum CcemStart {
     /// factorization and no CEM iterations. (With the implicit `A` it costs the second
     /// factorization of [`crate::angenent_boundary`].)
     Angenent,
+    /// The discrete harmonic measure of the boundary seen from an interior vertex near the
+    /// centre (the boundary of the conformal map sending that vertex to 0, in the
+    /// continuum), then moved along the disk's Möbius automorphisms to the lowest `E_C`
+    /// (see the `mobius_align` module notes in the crate docs): one solve with `L_II`,
+    /// which rides along in the pass that forms the dense `A`, no dense solve, and a few
+    /// products with `A`. Default: on the generated squares and disks it starts within
+    /// 1e-3 relative of the minimum, where Angenent's map starts 3–30 % above it, and cuts
+    /// CCEM-QN's iterations 49 → 3 (250k-face square), 29 → 1 (disk), 31 → 7 (hand.obj).
+    HarmonicMeasure,
 }
 
 /// Options of [`crate::ccem`].
@@ -94,10 +103,11 @@ pub struct CcemOptions {
     pub max_line_evals: usize,
     /// How the Schur complement is applied. Default: [`SchurMode::Auto`].
     pub schur: SchurMode,
-    /// Starting boundary. Default: [`CcemStart::Angenent`] (the paper starts from CEM, which
-    /// costs a second factorization and 20 interior solves; Angenent's map, CEM's own start,
-    /// comes from the Schur complement almost for free and CCEM-QN reaches the same minimum
-    /// from it on every class-a mesh: see the crate README).
+    /// Starting boundary. Default: [`CcemStart::HarmonicMeasure`] (the paper starts from
+    /// CEM, which costs a second factorization and 20 interior solves; the Möbius-aligned
+    /// harmonic measure costs one more right-hand side in the pass that forms `A` and a few
+    /// products, and CCEM-QN reaches the same minimum from it in 1–7 iterations on the
+    /// generated meshes and most class-a meshes: see the crate README).
     pub start: CcemStart,
     /// Quasi-Newton memory (curvature pairs kept; 0 = all). Default: [`CCEM_QN_MEMORY`] (0).
     pub qn_memory: usize,
@@ -129,7 +139,7 @@ impl CcemOptions {
         min_gap: CCEM_MIN_GAP,
         max_line_evals: CCEM_MAX_LINE_EVALS,
         schur: SchurMode::Auto,
-        start: CcemStart::Angenent,
+        start: CcemStart::HarmonicMeasure,
         qn_memory: CCEM_QN_MEMORY,
         record_steps: false,
         hessian_preconditioner: true,

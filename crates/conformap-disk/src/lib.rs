@@ -59,6 +59,7 @@ mod koebe_step;
 mod laplacian_choice;
 mod line_search;
 mod method;
+mod mobius_align;
 mod problem;
 mod qn;
 mod report;

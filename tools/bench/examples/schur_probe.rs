@@ -14,6 +14,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t = Instant::now();
         let g = p.interior_factor().inverse_gram(&p.blocks().ib)?;
         let ms = t.elapsed().as_secs_f64() * 1e3;
+        let b = vec![num_complex::Complex64::new(1.0, 0.5); st.n];
+        let mut solve = f64::INFINITY;
+        for _ in 0..5 {
+            let t = Instant::now();
+            let x = p.interior_factor().solve_complex(&b);
+            std::hint::black_box(x);
+            solve = solve.min(t.elapsed().as_secs_f64() * 1e3);
+        }
+        println!("two-column solve {solve:.1} ms");
         println!(
             "{}: n_I {} n_B {} nnz(G) {} read {read:.0} assemble {:.0} analyse {:.0} factor {:.0} | gram {ms:.0} ms, W entries {} ({:.2} of nnz(G)), panels {} of {}",
             name.rsplit('/').next().unwrap_or(&name),

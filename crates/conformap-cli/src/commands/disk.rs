@@ -17,9 +17,9 @@ use crate::report::{ms_since, InputInfo, StageTimings};
 /// The disk-map method (see `conformap_disk::DiskMethod`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Method {
-    /// CCEM with BFGS (Kuo et al. 2021, Algorithm 4.2), started from Angenent's map and
-    /// preconditioned by the exact Hessian there: the lowest conformal energy, converged,
-    /// never folded (default).
+    /// CCEM with BFGS (Kuo et al. 2021, Algorithm 4.2), started from the harmonic measure
+    /// of the boundary (Möbius-aligned) and preconditioned by the exact Hessian there: the
+    /// lowest conformal energy, converged, never folded (default).
     #[value(name = "ccem-qn")]
     CcemQn,
     /// CCEM steepest descent with the quadratic step (Algorithm 4.1).
