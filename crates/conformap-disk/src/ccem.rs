@@ -225,9 +225,10 @@ fn angenent_start(
 /// 4.5–4.6, Algorithm 4.1) or BFGS (Algorithm 4.2), both under a line search enforcing
 /// the Wolfe conditions, then maps the interior by one harmonic solve.
 ///
-/// - Starts from Angenent's map by default (CEM's own start), computed from the dense
-///   Schur complement with the factor of `L_II` that [`DiskProblem::new`] made: no further
-///   factorization. The quasi-Newton variant is preconditioned by the exact Hessian at the
+/// - Starts by default from the harmonic measure of the boundary seen from a central
+///   interior vertex, Möbius-aligned ([`CcemStart::HarmonicMeasure`]; its solve rides
+///   along in the pass that forms the dense Schur complement with the factor of `L_II`
+///   that [`DiskProblem::new`] made: no further factorization). The quasi-Newton variant is preconditioned by the exact Hessian at the
 ///   start and restarts its model before a tolerance stop
 ///   ([`CcemOptions::hessian_preconditioner`], [`CcemOptions::tol`]).
 /// - Keeps the boundary bijective: the angles stay strictly increasing. A step may go at
