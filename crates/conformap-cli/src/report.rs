@@ -41,7 +41,10 @@ impl InputInfo {
 pub struct StageTimings {
     /// Reading and validating the input.
     pub read: f64,
-    /// Assembling the Laplacian and its blocks.
+    /// Assembling the Laplacian and its blocks. For the disk methods with the cotangent
+    /// Laplacian it runs at the same time as the symbolic analysis (two cores), so
+    /// `assemble + factor + solve` exceeds the solver's wall-clock `solver.timings_ms.total`
+    /// by about the shorter of the two.
     pub assemble: f64,
     /// Sparse factorizations (symbolic analysis included).
     pub factor: f64,

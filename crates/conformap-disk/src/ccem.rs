@@ -421,7 +421,7 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             assemble: problem.assemble_ms,
             factor: problem.factor_ms + start.extra_factor_ms,
             solve: elapsed - start.extra_factor_ms,
-            total: problem.assemble_ms + problem.factor_ms + elapsed,
+            total: problem.setup_ms + elapsed,
         },
         gradient_norm_history: descent.gnorm,
         line_search: Some(ls),

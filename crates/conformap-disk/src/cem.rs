@@ -181,7 +181,7 @@ pub fn cem(problem: &mut DiskProblem<'_>, options: &CemOptions) -> Result<DiskMa
             assemble: problem.assemble_ms,
             factor: problem.factor_ms + init.factor_ms,
             solve: total - init.factor_ms,
-            total: total + problem.assemble_ms + problem.factor_ms,
+            total: total + problem.setup_ms,
         },
         ..SolverReport::default()
     };

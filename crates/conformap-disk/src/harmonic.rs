@@ -44,7 +44,7 @@ pub fn harmonic_arc_length(problem: &DiskProblem<'_>) -> DiskMap {
             assemble: problem.assemble_ms,
             factor: problem.factor_ms,
             solve,
-            total: problem.assemble_ms + problem.factor_ms + solve,
+            total: problem.setup_ms + solve,
         },
         ..SolverReport::default()
     };

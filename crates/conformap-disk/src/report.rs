@@ -13,7 +13,9 @@ pub struct Timings {
     pub factor: f64,
     /// Everything after the factorizations: initial map, iterations, final solve.
     pub solve: f64,
-    /// Total time inside the solver.
+    /// Wall-clock time inside the solver (the setup of [`crate::DiskProblem`] included:
+    /// less than `assemble + factor + solve` where the assembly and the symbolic analysis
+    /// overlap, see [`crate::DiskProblem::setup_ms`]).
     pub total: f64,
 }
 

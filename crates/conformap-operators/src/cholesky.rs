@@ -105,6 +105,49 @@ pub struct FactorStats {
     pub factor_ms: f64,
 }
 
+/// The symbolic analysis of [`Cholesky::analyse_with`], waiting for the values.
+#[derive(Debug)]
+pub struct SymbolicAnalysis(Cholesky, u64);
+
+/// A fingerprint of a CSC pattern (dimensions, column pointers, row indices; FNV-1a).
+fn pattern_fingerprint(a: &CsMat<f64>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |x: usize| {
+        h ^= x as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    };
+    eat(a.rows());
+    eat(a.cols());
+    for &p in a.indptr().raw_storage() {
+        eat(p);
+    }
+    for &i in a.indices() {
+        eat(i);
+    }
+    h
+}
+
+impl SymbolicAnalysis {
+    /// Milliseconds the analysis took.
+    pub fn analyse_ms(&self) -> f64 {
+        self.0.stats.analyse_ms
+    }
+
+    /// The numeric factorization of `a`, which must have exactly the pattern analysed.
+    ///
+    /// # Errors
+    /// [`OperatorError::PatternMismatch`] when `a`'s pattern is not the analysed one (the
+    /// caller then analyses `a` itself); else as [`Cholesky::refactor`].
+    pub fn factor(mut self, a: &CsMat<f64>) -> Result<Cholesky, OperatorError> {
+        if pattern_fingerprint(a) != self.1 {
+            return Err(OperatorError::PatternMismatch);
+        }
+        self.0.stats.nnz_matrix = a.nnz();
+        self.0.refactor(a)?;
+        Ok(self.0)
+    }
+}
+
 /// A sparse Cholesky factorization `A = LLᵀ` (with fill-reducing permutation), reusable for
 /// any number of solves and refactorizable for a new matrix with the same pattern.
 #[derive(Debug)]
@@ -173,6 +216,24 @@ impl Cholesky {
     /// See [`Cholesky::factor`]; also [`OperatorError::BadPermutation`] for an invalid
     /// custom ordering.
     pub fn factor_with(a: &CsMat<f64>, options: &CholeskyOptions) -> Result<Self, OperatorError> {
+        let mut chol = Self::analyse_with(a, options)?.0;
+        chol.refactor(a)?;
+        Ok(chol)
+    }
+
+    /// The symbolic analysis alone (fill-reducing ordering, supernodal structure) of a
+    /// matrix with the pattern of `a` (its values are not read): the numeric factorization
+    /// follows with [`SymbolicAnalysis::factor`] for any matrix of exactly this pattern.
+    /// The analysis needs only the pattern, so it can run while the values are still being
+    /// computed (the disk solver overlaps it with the assembly of the Laplacian).
+    ///
+    /// # Errors
+    /// [`OperatorError::NotSquareCsc`], [`OperatorError::BadPermutation`] for an invalid
+    /// custom ordering, [`OperatorError::Factorization`] if faer's analysis fails.
+    pub fn analyse_with(
+        a: &CsMat<f64>,
+        options: &CholeskyOptions,
+    ) -> Result<SymbolicAnalysis, OperatorError> {
         let t0 = Instant::now();
         let mat = view(a)?;
         let n = a.rows();
@@ -217,7 +278,7 @@ impl Cholesky {
         )
         .map_err(|e| OperatorError::Factorization(format!("{e:?}")))?;
         let analyse_ms = t0.elapsed().as_secs_f64() * 1e3;
-        let mut chol = Self {
+        let chol = Self {
             values: Vec::new(),
             par: par_for(options.threads),
             stats: FactorStats {
@@ -230,8 +291,7 @@ impl Cholesky {
             },
             symbolic,
         };
-        chol.refactor(a)?;
-        Ok(chol)
+        Ok(SymbolicAnalysis(chol, pattern_fingerprint(a)))
     }
 
     /// Numeric refactorization for a matrix with the same sparsity pattern as the one

@@ -56,6 +56,31 @@ pub fn cotan_laplacian(mesh: &TriMesh) -> CsMat<f64> {
     CsMat::new_csc((n, n), indptr, indices, data)
 }
 
+/// The sparsity pattern of the interior block `L_II` of [`cotan_laplacian`] for `part`
+/// (exactly that of [`LaplacianBlocks::ii`]: every interior vertex's interior neighbours
+/// and itself), with all values 1. It needs only the connectivity, so the symbolic
+/// analysis of `L_II` can run on it while the cotangent weights are computed.
+pub fn interior_pattern(mesh: &TriMesh, part: &Partition) -> CsMat<f64> {
+    let adj = mesh.vertex_adjacency();
+    let n = part.interior.len();
+    let mut indptr = Vec::with_capacity(n + 1);
+    let mut indices = Vec::with_capacity(adj.neighbors.len() + n);
+    indptr.push(0usize);
+    for &v in &part.interior {
+        let v = v as usize;
+        let nb = adj.neighbors_of(v);
+        let split = nb.partition_point(|&w| (w as usize) < v);
+        let local = |w: u32| part.local[w as usize] as usize;
+        let interior = |w: &&u32| part.is_interior[**w as usize];
+        indices.extend(nb[..split].iter().filter(interior).map(|&w| local(w)));
+        indices.push(part.local[v] as usize);
+        indices.extend(nb[split..].iter().filter(interior).map(|&w| local(w)));
+        indptr.push(indices.len());
+    }
+    let data = vec![1.0; indices.len()];
+    CsMat::new_csc((n, n), indptr, indices, data)
+}
+
 /// `½ fᴴ L f` for a real symmetric `L` and a complex vector `f` (the Dirichlet energy of CEM
 /// Eq. 5 when `L` is [`cotan_laplacian`]).
 pub fn quadratic_form(l: &CsMat<f64>, f: &[Complex64]) -> f64 {

@@ -30,7 +30,7 @@ mod mean_value;
 
 pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
-    DenseModifiedLblt, FactorStats, InverseGram, Ordering,
+    DenseModifiedLblt, FactorStats, InverseGram, Ordering, SymbolicAnalysis,
 };
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
@@ -40,7 +40,9 @@ pub use intrinsic::{
     intrinsic_delaunay_laplacian, intrinsic_delaunay_laplacian_with, IntrinsicOptions,
     IntrinsicStats, IntrinsicTriangulation, INTRINSIC_DELAUNAY_TOL, INTRINSIC_MAX_FLIPS_PER_EDGE,
 };
-pub use laplacian::{cotan_laplacian, mul_complex, quadratic_form, LaplacianBlocks, Partition};
+pub use laplacian::{
+    cotan_laplacian, interior_pattern, mul_complex, quadratic_form, LaplacianBlocks, Partition,
+};
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
 
@@ -64,6 +66,9 @@ pub enum OperatorError {
         /// Columns.
         cols: usize,
     },
+    /// A matrix given to [`SymbolicAnalysis::factor`] does not have the pattern analysed.
+    #[error("the matrix does not have the sparsity pattern that was analysed")]
+    PatternMismatch,
     /// A custom ordering is not a permutation of `0..n`.
     #[error("the custom ordering is not a permutation of 0..{n}")]
     BadPermutation {

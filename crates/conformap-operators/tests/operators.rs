@@ -2,8 +2,9 @@
 
 use conformap_mesh::TriMesh;
 use conformap_operators::{
-    cotan_laplacian, mul_complex, quadratic_form, relative_residual, surface_area, Cholesky,
-    CholeskyOptions, LaplacianBlocks, LuSolver, Ordering, Partition,
+    cotan_laplacian, interior_pattern, mul_complex, quadratic_form, relative_residual,
+    surface_area, Cholesky, CholeskyOptions, LaplacianBlocks, LuSolver, OperatorError, Ordering,
+    Partition,
 };
 use num_complex::Complex64;
 
@@ -33,6 +34,44 @@ fn bumpy_grid(n: u32, planar: bool) -> TriMesh {
         }
     }
     TriMesh::try_new(p, f).expect("valid grid")
+}
+
+/// The connectivity-only pattern is exactly `L_II`'s, its analysis factors `L_II` to the
+/// same solution as a plain factorization, and a matrix of another pattern is refused.
+#[test]
+fn analysis_of_the_interior_pattern_factors_l_ii() {
+    let m = bumpy_grid(10, false);
+    let l = cotan_laplacian(&m);
+    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
+    let blocks = LaplacianBlocks::new(&l, &part);
+    let pattern = interior_pattern(&m, &part);
+    assert_eq!(
+        pattern.indptr().raw_storage(),
+        blocks.ii.indptr().raw_storage()
+    );
+    assert_eq!(pattern.indices(), blocks.ii.indices());
+    let analysed = Cholesky::analyse_with(&pattern, &CholeskyOptions::DEFAULT).expect("analyse");
+    assert!(analysed.analyse_ms() >= 0.0);
+    let chol = analysed.factor(&blocks.ii).expect("factor");
+    let plain = Cholesky::factor(&blocks.ii).expect("factor");
+    let n = blocks.ii.rows();
+    let b: Vec<f64> = (0..n).map(|k| (k as f64 * 0.7).sin()).collect();
+    let (mut x, mut y) = (b.clone(), b.clone());
+    chol.solve_in_place(&mut x, 1);
+    plain.solve_in_place(&mut y, 1);
+    for (a, c) in x.iter().zip(&y) {
+        assert!((a - c).abs() <= 1e-13 * c.abs().max(1.0), "{a} vs {c}");
+    }
+    // another pattern: the block of a coarser grid
+    let other = bumpy_grid(9, false);
+    let lo = cotan_laplacian(&other);
+    let po = Partition::new(other.num_vertices(), &other.boundary_loops()[0]);
+    let bo = LaplacianBlocks::new(&lo, &po);
+    let analysed = Cholesky::analyse_with(&pattern, &CholeskyOptions::DEFAULT).expect("analyse");
+    assert!(matches!(
+        analysed.factor(&bo.ii),
+        Err(OperatorError::PatternMismatch)
+    ));
 }
 
 #[test]
