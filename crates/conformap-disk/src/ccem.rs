@@ -12,7 +12,7 @@ use crate::cem::CemOptions;
 use crate::cem::{cem, interior_residual};
 use crate::descent::{Descent, Stop};
 use crate::energy::{evaluate, Eval};
-use crate::hessian::Preconditioner;
+use crate::hessian::{Preconditioner, HESSIAN_BAND};
 use crate::initial::{
     angenent_boundary, angenent_from_schur, angenent_rhs, arc_length_boundary, centre_face,
 };
@@ -34,6 +34,22 @@ pub const GAP_FLOOR_MAX: f64 = 1e-4;
 /// held): 2 refreshes take the harmonic-measure start's stop from E_C = 2.909386e-2 to
 /// 2.909322e-2, below the 2.909366e-2 that Angenent's start reached.
 pub const HELD_REFRESHES: usize = 4;
+
+/// The Hessian preconditioner at `at`: its band from `min_nb` boundary vertices on
+/// ([`CcemOptions::banded_hessian_min_nb`]; falling back to the whole Hessian if the band
+/// cannot be factored), else the whole Hessian.
+fn precondition(a: &[f64], at: &Eval, min_nb: usize) -> Option<Preconditioner> {
+    if at.theta.len() >= min_nb {
+        if let Some(p) = Preconditioner::banded(a, at, HESSIAN_BAND) {
+            return Some(p);
+        }
+    }
+    Preconditioner::at(a, at)
+}
+
+/// Möbius re-alignments at the stops of a descent preconditioned by the banded Hessian
+/// (each a few products with `A`).
+pub const BANDED_REALIGNMENTS: usize = 3;
 
 /// Faces whose image has non-positive signed area: their number and the first one.
 pub(crate) fn flipped_faces(mesh: &TriMesh, f: &[Complex64]) -> (usize, usize) {
@@ -348,8 +364,19 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
     // 50, igea_open.obj 125 → 40 to a lower minimum, a hemisphere 182 → 5)
     if qn && options.hessian_preconditioner {
         if let Some(a) = schur.dense() {
-            descent.precond = Preconditioner::at(a, &cur);
+            descent.precond = precondition(a, &cur, options.banded_hessian_min_nb);
             match &descent.precond {
+                Some(p) if p.band.is_some() => notes.push(format!(
+                    "BFGS preconditioned by the band (half-width {}) of the Hessian at the \
+                     start ({:.0} ms){}",
+                    p.band.unwrap_or(0),
+                    p.ms,
+                    if p.modified > 0 {
+                        format!("; shifted {} times to be positive definite", p.modified)
+                    } else {
+                        String::new()
+                    }
+                )),
                 Some(p) => notes.push(format!(
                     "BFGS preconditioned by the exact Hessian at the start ({:.0} ms){}",
                     p.ms,
@@ -480,7 +507,7 @@ fn minimize_valid(
                 break;
             };
             let before = last.energy;
-            descent.precond = Preconditioner::at(a, &last);
+            descent.precond = precondition(a, &last, descent.options.banded_hessian_min_nb);
             descent.bfgs.reset();
             refreshes += 1;
             let (next, s) = descent.minimize(last);
@@ -493,6 +520,32 @@ fn minimize_valid(
         if refreshes > 0 {
             notes.push(format!(
                 "{refreshes} Hessian refreshes at the stops with gaps held at the floor"
+            ));
+        }
+        // a banded preconditioner leaves out the far couplings that set the two soft
+        // Möbius directions: at its stop, align along the orbit again and go on while that
+        // lowers E_C by more than the tolerance
+        let mut realigned = 0;
+        while descent.precond.as_ref().is_some_and(|p| p.band.is_some())
+            && matches!(stop, Stop::Tolerance | Stop::Rounding)
+            && realigned < BANDED_REALIGNMENTS
+        {
+            let tol = descent.options.tol;
+            let (aligned, a) = align(descent.schur, last, tol);
+            realigned += 1;
+            last = aligned;
+            if !(a.energy_before - a.energy_after > tol * a.energy_after.abs()) {
+                break;
+            }
+            descent.bfgs.reset();
+            descent.log_state(&last);
+            let (next, s) = descent.minimize(last);
+            last = next;
+            stop = s;
+        }
+        if realigned > 0 {
+            notes.push(format!(
+                "{realigned} Möbius re-alignments at the stops of the banded preconditioner"
             ));
         }
         cur = last;

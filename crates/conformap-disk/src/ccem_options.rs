@@ -125,7 +125,22 @@ pub struct CcemOptions {
     /// the same minimum on the class-a meshes and the generated squares: see the crate
     /// README).
     pub hessian_preconditioner: bool,
+    /// Boundary length from which the Hessian preconditioner is the cyclic band of the
+    /// Hessian (half-width 128, factored by the sparse Cholesky in `n_B b²`) instead of the
+    /// whole Hessian (dense modified `LBLᵀ`, `n_B³ / 3` flops: about twice the sparse
+    /// factorization of `L_II` on a height field over a square). A descent preconditioned
+    /// by the band re-aligns along the Möbius orbit at its stops (the band leaves out the
+    /// far couplings that set those two soft directions) and goes on while that lowers
+    /// `E_C`. Default: [`CCEM_BANDED_HESSIAN_MIN_NB`].
+    pub banded_hessian_min_nb: usize,
 }
+
+/// Default of [`CcemOptions::banded_hessian_min_nb`]: 2000. Measured (start +
+/// iterations, whole Hessian → band): 1M-face square (`n_B = 2,828`) 289 → 178 ms, 2M
+/// (4,000) 620 → 311 ms; at `n_B ≈ 1,000–1,500` the two cost the same or the band more
+/// (1M-face cap, 1,050: 30 → 35 ms; 250k square, 1,416: 54 → 57 ms). Every class-a mesh
+/// (`n_B ≤ 433`, maze's implicit `A` aside) keeps the whole Hessian.
+pub const CCEM_BANDED_HESSIAN_MIN_NB: usize = 2000;
 
 impl CcemOptions {
     /// The defaults, as a constant.
@@ -143,6 +158,7 @@ impl CcemOptions {
         qn_memory: CCEM_QN_MEMORY,
         record_steps: false,
         hessian_preconditioner: true,
+        banded_hessian_min_nb: CCEM_BANDED_HESSIAN_MIN_NB,
     };
 
     /// Sets [`Self::variant`].
@@ -220,6 +236,13 @@ impl CcemOptions {
     #[must_use]
     pub fn with_hessian_preconditioner(mut self, on: bool) -> Self {
         self.hessian_preconditioner = on;
+        self
+    }
+
+    /// Sets [`Self::banded_hessian_min_nb`].
+    #[must_use]
+    pub fn with_banded_hessian_min_nb(mut self, n: usize) -> Self {
+        self.banded_hessian_min_nb = n;
         self
     }
 

@@ -182,7 +182,9 @@ impl<'s, 'a, 'm> Descent<'s, 'a, 'm> {
                     // predicts its decrease, −½ ∇E·d: when that meets the tolerance too,
                     // stop here instead of searching for it at the rounding level (a
                     // 250k-face cap: 22 evaluations spent finding nothing)
-                    if self.precond.is_some() {
+                    // (only the whole Hessian predicts it: a banded model underestimates
+                    // the decrease along the directions its band leaves out)
+                    if self.precond.as_ref().is_some_and(|p| p.band.is_none()) {
                         let (_, slope) = self.direction(&cur, qn);
                         if -0.5 * slope <= self.options.tol * cur.energy.abs() {
                             return (cur, Stop::Tolerance);

@@ -20,7 +20,8 @@
 //! mean diagonal is added (giving that direction the eigenvalue `μ`) (directions are made mean-free anyway); where the energy is not convex
 //! a multiple of the identity is added until the Cholesky factorization succeeds.
 
-use conformap_operators::DenseModifiedLblt;
+use conformap_operators::{Cholesky, CholeskyOptions, DenseModifiedLblt, Ordering};
+use sprs::CsMat;
 
 use crate::angles::gaps;
 use crate::energy::Eval;
@@ -37,12 +38,21 @@ pub(crate) const HESSIAN_EIGEN_FLOOR: f64 = 1e-12;
 /// change on the class-a meshes.
 pub(crate) const HESSIAN_DAMPING: f64 = 1e-7;
 
+/// Half-width of the banded Hessian (entries `(j, k)` with cyclic `|j − k| ≤ b` kept).
+/// Measured from the harmonic-measure start on the 250k-face square: half-widths 2, 8,
+/// 32, 128 need 31, 17, 8, 4 iterations (the whole Hessian: 3); the band's factorization
+/// costs `n_B b²` ≈ 50 Mflop at `n_B = 2,828`.
+pub(crate) const HESSIAN_BAND: usize = 128;
+
 /// The factored Hessian and what it cost.
 #[derive(Debug)]
 pub(crate) struct Preconditioner {
-    factor: DenseModifiedLblt,
-    /// Eigenvalues of `D`'s blocks that were negative (or below the floor) and flipped.
+    factor: Factor,
+    /// Eigenvalues of `D`'s blocks that were negative (or below the floor) and flipped
+    /// (dense), or diagonal shifts the banded Cholesky needed (banded).
     pub modified: usize,
+    /// Half-width of the band, when banded.
+    pub band: Option<usize>,
     /// Milliseconds spent forming and factoring.
     pub ms: f64,
 }
@@ -68,15 +78,118 @@ impl Preconditioner {
         let factor = DenseModifiedLblt::factor(h, n, 0, HESSIAN_EIGEN_FLOOR * dmax).ok()?;
         Some(Self {
             modified: factor.modified,
-            factor,
+            band: None,
+            factor: Factor::Dense(factor),
             ms: t0.elapsed().as_secs_f64() * 1e3,
         })
     }
 
+    /// The cyclic band (half-width `b`) of the Hessian at `at`, damped as the dense one,
+    /// factored by the sparse Cholesky (directions are made mean-free anyway, so the
+    /// rotation's null direction needs no lift); where the band is not positive definite, `10⁻⁶, 10⁻⁴, …` of the largest
+    /// diagonal entry is added until it is (each try counted in `modified`). `None` when no
+    /// shift up to the largest diagonal entry works (then the caller uses the dense one).
+    pub fn banded(a: &[f64], at: &Eval, b: usize) -> Option<Self> {
+        let t0 = std::time::Instant::now();
+        let n = at.theta.len();
+        if n < 3 || a.len() != n * n {
+            return None;
+        }
+        let b = b.min((n - 1) / 2);
+        let h = hessian_band(a, at, b);
+        let dmax = (0..n).fold(0.0f64, |m, j| m.max(h[j][b].abs()));
+        // no lift of the rotation's null direction on the diagonal: a shift of the whole
+        // spectrum damps the two soft Möbius directions too, and the descent then stops
+        // at the rounding level 2e-8 above the minimum (a bumpy 80 × 80 square); the band
+        // drops the far couplings but keeps the full row sums on its diagonal, so it is
+        // nonsingular as it is
+        let base = HESSIAN_DAMPING * dmax;
+        for (modified, shift) in [0.0, 1e-6, 1e-4, 1e-2, 1.0].into_iter().enumerate() {
+            let m = band_matrix(&h, b, base + shift * dmax);
+            // natural order: a cyclic band fills only the last `2b` rows (no ordering to
+            // compute)
+            let natural = CholeskyOptions::DEFAULT.with_ordering(Ordering::Identity);
+            if let Ok(c) = Cholesky::factor_with(&m, &natural) {
+                return Some(Self {
+                    modified,
+                    band: Some(b),
+                    factor: Factor::Banded(Box::new(c)),
+                    ms: t0.elapsed().as_secs_f64() * 1e3,
+                });
+            }
+        }
+        None
+    }
+
     /// `M⁻¹ x` in place, `M` the modified Hessian.
     pub fn apply_inverse(&self, x: &mut [f64]) {
-        self.factor.solve_in_place(x);
+        match &self.factor {
+            Factor::Dense(f) => f.solve_in_place(x),
+            Factor::Banded(c) => c.solve_in_place(x, 1),
+        }
     }
+}
+
+/// The factorization behind a [`Preconditioner`].
+#[derive(Debug)]
+enum Factor {
+    Dense(DenseModifiedLblt),
+    Banded(Box<Cholesky>),
+}
+
+/// Row `j` of the cyclic band of the Hessian: `h[j][b + d]` is `H_{j, j+d}`, `|d| ≤ b`
+/// (indices mod `n`), with the formulas of the module docs.
+fn hessian_band(a: &[f64], at: &Eval, b: usize) -> Vec<Vec<f64>> {
+    let n = at.theta.len();
+    let gp = gaps(&at.theta);
+    let f = &at.f;
+    (0..n)
+        .map(|j| {
+            let mut row = vec![0.0; 2 * b + 1];
+            for (slot, d) in (0..=2 * b).zip(-(b as isize)..=b as isize) {
+                if d == 0 {
+                    continue;
+                }
+                let k = (j as isize + d).rem_euclid(n as isize) as usize;
+                // A is symmetric: read column j (contiguous) rather than row j
+                row[slot] = a[j * n + k] * (f[j].re * f[k].re + f[j].im * f[k].im);
+            }
+            let jm = (j + n - 1) % n;
+            row[b] =
+                a[j * n + j] - (f[j].conj() * at.af[j]).re + 0.5 * (gp[j].sin() + gp[jm].sin());
+            // the area's coupling of neighbours
+            row[b + 1] -= 0.5 * gp[j].sin();
+            row[b - 1] -= 0.5 * gp[jm].sin();
+            row
+        })
+        .collect()
+}
+
+/// The band as a symmetric CSC matrix (full storage, sorted rows), `shift` added to the
+/// diagonal.
+fn band_matrix(h: &[Vec<f64>], b: usize, shift: f64) -> CsMat<f64> {
+    let n = h.len();
+    let mut indptr = Vec::with_capacity(n + 1);
+    let mut indices = Vec::with_capacity(n * (2 * b + 1));
+    let mut data = Vec::with_capacity(n * (2 * b + 1));
+    indptr.push(0);
+    let mut col: Vec<(usize, f64)> = Vec::with_capacity(2 * b + 1);
+    for (j, row) in h.iter().enumerate() {
+        col.clear();
+        for (slot, d) in (0..=2 * b).zip(-(b as isize)..=b as isize) {
+            let k = (j as isize + d).rem_euclid(n as isize) as usize;
+            // symmetrize: the band of A is symmetric, the area term too
+            let v = if d == 0 { row[slot] + shift } else { row[slot] };
+            col.push((k, v));
+        }
+        col.sort_unstable_by_key(|e| e.0);
+        for &(k, v) in &col {
+            indices.push(k);
+            data.push(v);
+        }
+        indptr.push(indices.len());
+    }
+    CsMat::new_csc((n, n), indptr, indices, data)
 }
 
 /// The Hessian of `E_C(θ)` at `at` (module docs), `n_B × n_B` column-major, for the dense

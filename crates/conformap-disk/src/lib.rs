@@ -73,8 +73,8 @@ pub mod doc_support;
 
 pub use ccem::{ccem, GAP_FLOOR_MAX, GAP_FLOOR_STEP};
 pub use ccem_options::{
-    CcemOptions, CcemStart, CcemVariant, CCEM_GAMMA1, CCEM_GAMMA2, CCEM_MAX_ITER,
-    CCEM_MAX_LINE_EVALS, CCEM_MIN_GAP, CCEM_QN_MEMORY, CCEM_RHO, CCEM_TOL,
+    CcemOptions, CcemStart, CcemVariant, CCEM_BANDED_HESSIAN_MIN_NB, CCEM_GAMMA1, CCEM_GAMMA2,
+    CCEM_MAX_ITER, CCEM_MAX_LINE_EVALS, CCEM_MIN_GAP, CCEM_QN_MEMORY, CCEM_RHO, CCEM_TOL,
 };
 pub use cem::{cem, interior_residual, CemOptions, CEM_MAX_ITER, CEM_TOL};
 pub use error::DiskError;

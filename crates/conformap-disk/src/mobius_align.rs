@@ -88,37 +88,58 @@ fn chart_gradient(theta_c: &[f64], b: Complex64, e: &Eval) -> [f64; 2] {
     g
 }
 
-/// Newton on the Möbius parameter from `cur` until the predicted decrease is below
-/// `tol · |E_C|` (or [`MOBIUS_ALIGN_ROUNDS`], or a round finds no decrease, or the 2 × 2
-/// Hessian is not positive definite: then `cur` is returned as it is).
+/// Newton on the Möbius parameter from `cur` until the predicted decrease of a freshly
+/// differenced model is below `tol · |E_C|` (or [`MOBIUS_ALIGN_ROUNDS`] accepted rounds, or
+/// a fresh model finds no decrease or is not positive definite: then the last point is
+/// returned).
 pub(crate) fn align(schur: &Schur<'_, '_>, mut cur: Eval, tol: f64) -> (Eval, Alignment) {
     let mut out = Alignment {
         energy_before: cur.energy,
         ..Alignment::default()
     };
     let zero = Complex64::new(0.0, 0.0);
-    for _ in 0..MOBIUS_ALIGN_ROUNDS {
+    // the 2 × 2 Hessian: by finite differences in the first round (or after a failed
+    // round), then by the BFGS update from each accepted step, whose end point's chart
+    // gradient is exact secant information (the charts of consecutive rounds differ by a
+    // small automorphism): one product per round instead of three to four
+    let mut model: Option<[[f64; 2]; 2]> = None;
+    let mut fresh = false;
+    let mut round = 0;
+    while round < MOBIUS_ALIGN_ROUNDS {
         let base = cur.theta.clone();
         let g0 = chart_gradient(&base, zero, &cur);
         if !(g0[0].is_finite() && g0[1].is_finite()) || g0 == [0.0, 0.0] {
             break;
         }
-        let mut hess = [[0.0; 2]; 2];
-        for (k, db) in [Complex64::new(FD_STEP, 0.0), Complex64::new(0.0, FD_STEP)]
-            .into_iter()
-            .enumerate()
-        {
-            let e = evaluate(schur, mobius_theta(&base, db));
-            out.products += 1;
-            let g = chart_gradient(&base, db, &e);
-            hess[0][k] = (g[0] - g0[0]) / FD_STEP;
-            hess[1][k] = (g[1] - g0[1]) / FD_STEP;
-        }
-        let (a, c) = (hess[0][0], hess[1][1]);
-        let s = 0.5 * (hess[0][1] + hess[1][0]);
+        let hess = match model {
+            Some(h) => h,
+            None => {
+                let mut h = [[0.0; 2]; 2];
+                for (k, db) in [Complex64::new(FD_STEP, 0.0), Complex64::new(0.0, FD_STEP)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let e = evaluate(schur, mobius_theta(&base, db));
+                    out.products += 1;
+                    let g = chart_gradient(&base, db, &e);
+                    h[0][k] = (g[0] - g0[0]) / FD_STEP;
+                    h[1][k] = (g[1] - g0[1]) / FD_STEP;
+                }
+                let s = 0.5 * (h[0][1] + h[1][0]);
+                h[0][1] = s;
+                h[1][0] = s;
+                fresh = true;
+                h
+            }
+        };
+        let (a, c, s) = (hess[0][0], hess[1][1], hess[0][1]);
         let det = a * c - s * s;
         if !(a > 0.0 && det > 0.0) {
-            break;
+            if fresh {
+                break;
+            }
+            model = None;
+            continue;
         }
         let mut step = [
             -(c * g0[0] - s * g0[1]) / det,
@@ -126,7 +147,12 @@ pub(crate) fn align(schur: &Schur<'_, '_>, mut cur: Eval, tol: f64) -> (Eval, Al
         ];
         let slope = g0[0] * step[0] + g0[1] * step[1];
         if !(-0.5 * slope > tol * cur.energy.abs()) {
-            break;
+            if fresh {
+                break;
+            }
+            // a stale model's small step is no proof: confirm with a fresh one
+            model = None;
+            continue;
         }
         let len = step[0].hypot(step[1]);
         if len > MAX_ROUND_STEP {
@@ -142,17 +168,36 @@ pub(crate) fn align(schur: &Schur<'_, '_>, mut cur: Eval, tol: f64) -> (Eval, Al
             let e = evaluate(schur, mobius_theta(&base, b));
             out.products += 1;
             if e.energy.is_finite() && e.energy <= cur.energy + ARMIJO * alpha * slope {
-                accepted = Some((e, b.norm()));
+                accepted = Some((e, b));
                 break;
             }
             alpha *= 0.5;
         }
         match accepted {
-            Some((e, moved)) => {
+            Some((e, b)) => {
+                // BFGS update of the 2 × 2 model from the secant pair in this round's chart
+                let g1 = chart_gradient(&base, b, &e);
+                let sv = [b.re, b.im];
+                let y = [g1[0] - g0[0], g1[1] - g0[1]];
+                let ys = y[0] * sv[0] + y[1] * sv[1];
+                let bs = [a * sv[0] + s * sv[1], s * sv[0] + c * sv[1]];
+                let sbs = sv[0] * bs[0] + sv[1] * bs[1];
+                model = (ys > 0.0 && sbs > 0.0).then(|| {
+                    let mut h = hess;
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            h[i][j] += y[i] * y[j] / ys - bs[i] * bs[j] / sbs;
+                        }
+                    }
+                    h
+                });
+                fresh = false;
                 cur = e;
                 out.rounds += 1;
-                out.moved += moved;
+                out.moved += b.norm();
+                round += 1;
             }
+            None if !fresh => model = None,
             None => break,
         }
     }

@@ -347,6 +347,39 @@ fn harmonic_measure_start_reaches_angenents_minimum_in_fewer_iterations() {
     );
 }
 
+/// The banded Hessian preconditioner (the default from 2000 boundary vertices; forced here
+/// on a 320-vertex boundary) reaches the minimum of the whole-Hessian run, says so, and
+/// needs a few more iterations, not many.
+#[test]
+fn banded_hessian_preconditioner_reaches_the_same_minimum() {
+    let mesh = bumpy_square(80);
+    let mut problem = DiskProblem::new(&mesh).expect("disk");
+    let base = CcemOptions::DEFAULT.with_record_steps(true);
+    assert!(problem.num_boundary() < base.banded_hessian_min_nb);
+    let whole = ccem(&mut problem, &base).expect("ccem");
+    let banded_opts = base.with_banded_hessian_min_nb(64);
+    let banded = ccem(&mut problem, &banded_opts).expect("ccem");
+    check_valid_run(&mesh, &problem, &banded, &banded_opts);
+    let note = |m: &DiskMap, what: &str| m.report.notes.iter().any(|n| n.contains(what));
+    assert!(
+        note(&banded, "the band (half-width"),
+        "{:?}",
+        banded.report.notes
+    );
+    assert!(
+        note(&whole, "the exact Hessian"),
+        "{:?}",
+        whole.report.notes
+    );
+    let (e_w, e_b) = (
+        problem.conformal_energy(&whole.map),
+        problem.conformal_energy(&banded.map),
+    );
+    assert!((e_b - e_w).abs() <= 1e-9 * e_w, "{e_b} vs {e_w}");
+    let (i_w, i_b) = (whole.report.iterations, banded.report.iterations);
+    assert!(i_b <= 4 * i_w.max(2), "{i_b} banded iterations vs {i_w}");
+}
+
 /// A planar regular hexagon with a centre vertex: the identity (scaled) is conformal, so
 /// the minimum of `E_C` is 0 and CCEM must find it from any start.
 #[test]
