@@ -373,6 +373,108 @@ pub(super) fn inverse_gram(
     }
 }
 
+/// `A⁻¹ rhs` in place (`ncols` columns, column-major) for the factor `A = P⁻¹ G Gᵀ P⁻ᵀ`,
+/// with the forward solve skipping every panel whose rows of the right-hand side are
+/// still exactly zero when it is reached (its solution there is zero and it updates
+/// nothing): a right-hand side supported near the boundary, as in the harmonic extension
+/// `−L_II⁻¹ L_IB f_B`, touches only the paths of its support to the root. Exact; the
+/// backward solve is the full one.
+pub(super) fn solve_skipping_zeros(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &[f64],
+    rhs: &mut [f64],
+    ncols: usize,
+) {
+    let n = symbolic.nrows();
+    let panels = Panels::new(symbolic, values);
+    let mut x = vec![0.0; n * ncols];
+    let perm = symbolic.perm().map(|p| p.arrays());
+    for j in 0..ncols {
+        let (src, dst) = (&rhs[j * n..(j + 1) * n], &mut x[j * n..(j + 1) * n]);
+        match perm {
+            Some((fwd, _)) => dst.iter_mut().zip(fwd).for_each(|(d, &f)| *d = src[f]),
+            None => dst.copy_from_slice(src),
+        }
+    }
+    let mut tmp: Vec<f64> = Vec::new();
+    for p in 0..panels.len() {
+        let panel = panels.get(p);
+        let (w, start, plen) = (panel.width, panel.start, panel.pattern.len());
+        let live = (0..ncols).any(|j| {
+            x[j * n + start..j * n + start + w]
+                .iter()
+                .any(|&v| v != 0.0)
+        });
+        if !live {
+            continue;
+        }
+        let (top, bottom) = panel.val.split_at_row(w);
+        {
+            let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
+            solve_lower_triangular_in_place(top, xm.subrows_mut(start, w), Par::Seq);
+        }
+        if plen == 0 {
+            continue;
+        }
+        tmp.clear();
+        tmp.resize(plen * ncols, 0.0);
+        {
+            let xr = MatRef::from_column_major_slice(&x, n, ncols);
+            matmul(
+                MatMut::from_column_major_slice_mut(&mut tmp, plen, ncols),
+                Accum::Replace,
+                bottom,
+                xr.subrows(start, w),
+                1.0,
+                Par::Seq,
+            );
+        }
+        for j in 0..ncols {
+            let col = &mut x[j * n..(j + 1) * n];
+            for (&i, &t) in panel.pattern.iter().zip(&tmp[j * plen..(j + 1) * plen]) {
+                col[i] -= t;
+            }
+        }
+    }
+    for p in (0..panels.len()).rev() {
+        let panel = panels.get(p);
+        let (w, start, plen) = (panel.width, panel.start, panel.pattern.len());
+        let (top, bottom) = panel.val.split_at_row(w);
+        if plen > 0 {
+            tmp.clear();
+            tmp.resize(plen * ncols, 0.0);
+            for j in 0..ncols {
+                let col = &x[j * n..(j + 1) * n];
+                for (t, &i) in tmp[j * plen..(j + 1) * plen].iter_mut().zip(panel.pattern) {
+                    *t = col[i];
+                }
+            }
+            let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
+            matmul(
+                xm.subrows_mut(start, w),
+                Accum::Add,
+                bottom.transpose(),
+                MatRef::from_column_major_slice(&tmp, plen, ncols),
+                -1.0,
+                Par::Seq,
+            );
+        }
+        let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
+        faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+            top.transpose(),
+            xm.subrows_mut(start, w),
+            Par::Seq,
+        );
+    }
+    for j in 0..ncols {
+        let (src, dst) = (&x[j * n..(j + 1) * n], &mut rhs[j * n..(j + 1) * n]);
+        match perm {
+            Some((_, inv)) => dst.iter_mut().zip(inv).for_each(|(d, &v)| *d = src[v]),
+            None => dst.copy_from_slice(src),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use sprs::TriMat;
