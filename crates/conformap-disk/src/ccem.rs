@@ -345,13 +345,8 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
         let (aligned, a) = align(&schur, cur, options.tol);
         cur = aligned;
         notes.push(format!(
-            "Möbius-aligned: {} rounds, |b| {:.3e} in all, E_C {:.9e} → {:.9e}, {} products ({:.0} ms)",
-            a.rounds,
-            a.moved,
-            a.energy_before,
-            a.energy_after,
-            a.products,
-            t_align.elapsed().as_secs_f64() * 1e3
+            "Möbius-aligned: {} rounds, |b| {:.3e} in all, E_C {:.9e} → {:.9e}, {} products",
+            a.rounds, a.moved, a.energy_before, a.energy_after, a.products,
         ));
         align_ms = t_align.elapsed().as_secs_f64() * 1e3;
     }
@@ -368,9 +363,8 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             match &descent.precond {
                 Some(p) if p.band.is_some() => notes.push(format!(
                     "BFGS preconditioned by the band (half-width {}) of the Hessian at the \
-                     start ({:.0} ms){}",
+                     start{}",
                     p.band.unwrap_or(0),
-                    p.ms,
                     if p.modified > 0 {
                         format!("; shifted {} times to be positive definite", p.modified)
                     } else {
@@ -378,8 +372,7 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
                     }
                 )),
                 Some(p) => notes.push(format!(
-                    "BFGS preconditioned by the exact Hessian at the start ({:.0} ms){}",
-                    p.ms,
+                    "BFGS preconditioned by the exact Hessian at the start{}",
                     if p.modified > 0 {
                         format!("; {} negative curvatures flipped", p.modified)
                     } else {

@@ -53,8 +53,6 @@ pub(crate) struct Preconditioner {
     pub modified: usize,
     /// Half-width of the band, when banded.
     pub band: Option<usize>,
-    /// Milliseconds spent forming and factoring.
-    pub ms: f64,
 }
 
 impl Preconditioner {
@@ -62,7 +60,6 @@ impl Preconditioner {
     /// `n_B × n_B`), lifted as in the module docs, damped by [`HESSIAN_DAMPING`] and factored with the modified
     /// Bunch–Kaufman factorization; `None` only for input of the wrong size.
     pub fn at(a: &[f64], at: &Eval) -> Option<Self> {
-        let t0 = std::time::Instant::now();
         let n = at.theta.len();
         if n == 0 || a.len() != n * n {
             return None;
@@ -80,7 +77,6 @@ impl Preconditioner {
             modified: factor.modified,
             band: None,
             factor: Factor::Dense(factor),
-            ms: t0.elapsed().as_secs_f64() * 1e3,
         })
     }
 
@@ -90,7 +86,6 @@ impl Preconditioner {
     /// diagonal entry is added until it is (each try counted in `modified`). `None` when no
     /// shift up to the largest diagonal entry works (then the caller uses the dense one).
     pub fn banded(a: &[f64], at: &Eval, b: usize) -> Option<Self> {
-        let t0 = std::time::Instant::now();
         let n = at.theta.len();
         if n < 3 || a.len() != n * n {
             return None;
@@ -114,7 +109,6 @@ impl Preconditioner {
                     modified,
                     band: Some(b),
                     factor: Factor::Banded(Box::new(c)),
-                    ms: t0.elapsed().as_secs_f64() * 1e3,
                 });
             }
         }
