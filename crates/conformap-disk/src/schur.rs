@@ -21,7 +21,6 @@ use std::time::Instant;
 
 use conformap_operators::mul_complex;
 use num_complex::Complex64;
-use rayon::prelude::*;
 use sprs::CsMat;
 
 use crate::problem::DiskProblem;
@@ -199,16 +198,11 @@ impl<'a, 'm> Schur<'a, 'm> {
     }
 }
 
-/// Below this `n_B` a dense product runs on one thread (thread dispatch costs more than the
-/// memory-bound work it splits).
-const PARALLEL_PRODUCT_MIN: usize = 512;
-
 /// `A x` for a dense symmetric `A` (column-major), reading only its lower triangle (half
 /// the memory traffic of a full product, which is what a product costs): column `j`
 /// contributes `Σ_{i≥j} a_ij x_i` to `y_j` and `a_ij x_j` to `y_i`, `i > j`, in one pass,
 /// for the real and imaginary parts at once, with four independent partial sums so that
-/// the loop vectorizes. Columns are split over the threads in ranges of equal triangle
-/// area, each thread summing into its own `y`.
+/// the loop vectorizes. On one thread (see the body for why).
 fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
     let nb = x.len();
     let re: Vec<f64> = x.iter().map(|z| z.re).collect();
@@ -259,29 +253,11 @@ fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
         }
         (yr, yi)
     };
-    let threads = rayon::current_num_threads();
-    let (yr, yi) = if nb >= PARALLEL_PRODUCT_MIN && threads > 1 {
-        // column j costs nb − j: cut where the remaining area is (t/T) of the triangle
-        let total = (nb * (nb + 1) / 2) as f64;
-        let cut = |t: usize| -> usize {
-            let rest = total * (1.0 - t as f64 / threads as f64);
-            // columns c.. hold (nb − c)(nb − c + 1)/2 entries
-            let m = ((8.0 * rest + 1.0).sqrt() - 1.0) / 2.0;
-            nb - (m.round() as usize).min(nb)
-        };
-        let parts: Vec<(Vec<f64>, Vec<f64>)> = (0..threads)
-            .into_par_iter()
-            .map(|t| columns(cut(t)..cut(t + 1)))
-            .collect();
-        let (mut yr, mut yi) = (vec![0.0; nb], vec![0.0; nb]);
-        for (pr, pi) in parts {
-            yr.iter_mut().zip(pr).for_each(|(a, b)| *a += b);
-            yi.iter_mut().zip(pi).for_each(|(a, b)| *a += b);
-        }
-        (yr, yi)
-    } else {
-        columns(0..nb)
-    };
+    // one thread: measured inside a run (the rayon workers asleep between products),
+    // splitting the columns over two threads was slower at every size, 0.66 against 0.43
+    // ms at n_B = 896 and 6.6 against 6.1 ms at 2,828 (it wins only in a tight loop with
+    // the workers spinning)
+    let (yr, yi) = columns(0..nb);
     yr.into_iter()
         .zip(yi)
         .map(|(r, i)| Complex64::new(r, i))
