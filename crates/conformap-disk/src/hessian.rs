@@ -133,7 +133,7 @@ enum Factor {
 
 /// Row `j` of the cyclic band of the Hessian: `h[j][b + d]` is `H_{j, j+d}`, `|d| ≤ b`
 /// (indices mod `n`), with the formulas of the module docs.
-fn hessian_band(a: &[f64], at: &Eval, b: usize) -> Vec<Vec<f64>> {
+pub(crate) fn hessian_band(a: &[f64], at: &Eval, b: usize) -> Vec<Vec<f64>> {
     let n = at.theta.len();
     let gp = gaps(&at.theta);
     let f = &at.f;

@@ -9,7 +9,7 @@ use num_complex::Complex64;
 use crate::angles::unwrap_boundary;
 use crate::ccem_tests::fixture;
 use crate::energy::{evaluate, step};
-use crate::hessian::hessian;
+use crate::hessian::{hessian, hessian_band};
 use crate::initial::{angenent_boundary, angenent_from_schur, angenent_rhs, centre_face};
 use crate::schur::{form_dense, form_dense_by_solves, Schur, SchurMode};
 use crate::{ccem, CcemOptions, CcemStart, CemOptions, DiskProblem};
@@ -94,6 +94,35 @@ fn hessian_matches_differences_of_the_gradient() {
         let fd = (gp[j] - gm[j]) / (2.0 * eps);
         let hd: f64 = (0..n).map(|k| h[k * n + j] * d[k]).sum();
         assert!((fd - hd).abs() < 1e-6 * scale, "row {j}: {fd} vs {hd}");
+    }
+}
+
+/// The banded preconditioner's entries are the whole Hessian's inside the cyclic band
+/// (wrap-around included), read from the other triangle of `A`.
+#[test]
+fn band_of_the_hessian_is_the_hessian_in_the_band() {
+    let mesh = fixture("woody.obj");
+    let problem = DiskProblem::new(&mesh).expect("disk");
+    let schur = Schur::new(&problem, SchurMode::Dense);
+    let a = schur.dense().expect("dense").to_vec();
+    let fb = crate::initial::arc_length_boundary(&mesh, &problem.partition().boundary);
+    let theta = unwrap_boundary(&fb, 0.0).expect("in order").theta;
+    let at = evaluate(&schur, theta);
+    let n = at.theta.len();
+    let h = hessian(&a, &at);
+    let b = 7;
+    let band = hessian_band(&a, &at, b);
+    let scale = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (j, row) in band.iter().enumerate() {
+        for (slot, d) in (0..=2 * b).zip(-(b as isize)..=b as isize) {
+            let k = (j as isize + d).rem_euclid(n as isize) as usize;
+            let want = h[k * n + j];
+            assert!(
+                (row[slot] - want).abs() <= 1e-14 * scale,
+                "({j}, {k}): {} vs {want}",
+                row[slot]
+            );
+        }
     }
 }
 
