@@ -20,7 +20,7 @@
 //! mean diagonal is added (giving that direction the eigenvalue `μ`) (directions are made mean-free anyway); where the energy is not convex
 //! a multiple of the identity is added until the Cholesky factorization succeeds.
 
-use conformap_operators::{Cholesky, CholeskyOptions, DenseModifiedLblt, Ordering};
+use conformap_operators::{Cholesky, CholeskyOptions, DenseCholesky, DenseModifiedLblt, Ordering};
 use sprs::CsMat;
 
 use crate::angles::gaps;
@@ -72,6 +72,17 @@ impl Preconditioner {
         for j in 0..n {
             h[j * n + j] += HESSIAN_DAMPING * dmax;
         }
+        // positive definite (the usual case from the aligned harmonic-measure start): the
+        // plain Cholesky, about twice as fast as the modified Bunch–Kaufman (896: 2.9
+        // against 6.3 ms; 1,416: 20 against 30; 1,990: 35 against 64), which stays the
+        // fallback for an indefinite Hessian
+        if let Ok(c) = DenseCholesky::factor(h.clone(), n, 0) {
+            return Some(Self {
+                modified: 0,
+                band: None,
+                factor: Factor::Cholesky(c),
+            });
+        }
         let factor = DenseModifiedLblt::factor(h, n, 0, HESSIAN_EIGEN_FLOOR * dmax).ok()?;
         Some(Self {
             modified: factor.modified,
@@ -119,6 +130,7 @@ impl Preconditioner {
     pub fn apply_inverse(&self, x: &mut [f64]) {
         match &self.factor {
             Factor::Dense(f) => f.solve_in_place(x),
+            Factor::Cholesky(c) => c.solve_in_place(x, 1),
             Factor::Banded(c) => c.solve_in_place(x, 1),
         }
     }
@@ -128,6 +140,7 @@ impl Preconditioner {
 #[derive(Debug)]
 enum Factor {
     Dense(DenseModifiedLblt),
+    Cholesky(DenseCholesky),
     Banded(Box<Cholesky>),
 }
 
