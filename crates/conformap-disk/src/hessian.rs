@@ -17,8 +17,12 @@
 //! - and the area adds `−½ sin(θ_{j+1} − θ_j)` at `(j, j+1)` and `(j+1, j)`.
 //!
 //! The constant vector spans its null space (rotations), so `(μ / n_B) 11ᵀ` with `μ` the
-//! mean diagonal is added (giving that direction the eigenvalue `μ`) (directions are made mean-free anyway); where the energy is not convex
-//! a multiple of the identity is added until the Cholesky factorization succeeds.
+//! mean diagonal is added (giving that direction the eigenvalue `μ`; directions are made
+//! mean-free anyway), plus a damping of 1e-7 of the largest diagonal entry. Factored by the
+//! dense Cholesky when that is positive definite (the usual case from the aligned
+//! harmonic-measure start), else by the modified Bunch–Kaufman `LBLᵀ`, which flips
+//! negative curvatures. From [`crate::CcemOptions::banded_hessian_min_nb`] boundary
+//! vertices on, only the Hessian's cyclic band is factored ([`Preconditioner::banded`]).
 
 use conformap_operators::{Cholesky, CholeskyOptions, DenseCholesky, DenseModifiedLblt, Ordering};
 use sprs::CsMat;
