@@ -411,7 +411,8 @@ const DENSE_MAX_BYTES: f64 = 512.0 * 1048576.0;
 
 /// Estimated peak resident memory (bytes) of `disk` on a mesh with `vertices` vertices,
 /// `edges` edges and a boundary loop of `boundary` vertices: a linear part (mesh, Laplacian
-/// with `vertices + 2 edges` entries of 16 bytes, intrinsic triangulation, maps) plus the
+/// with `vertices + 2 edges` entries of 16 bytes and the analysed pattern of its interior
+/// block beside it, intrinsic triangulation, maps) plus the
 /// Cholesky factor of the interior block, whose fill under AMD grows like `n log n` on
 /// surface meshes, plus, for a method that forms one (`dense_boundary`), a dense
 /// boundary-sized block (`8 n_B²` bytes, at most 512 MiB).
@@ -430,7 +431,9 @@ pub fn estimate_peak_bytes(
     let n = vertices as f64;
     let interior = vertices.saturating_sub(boundary).max(2) as f64;
     let laplacian_nnz = n + 2.0 * edges as f64;
-    let linear = BYTES_PER_VERTEX * n + 16.0 * laplacian_nnz;
+    // the Laplacian's entries (16 bytes each), and as many again for the pattern of `L_II`
+    // that the symbolic analysis holds while the assembly runs beside it
+    let linear = BYTES_PER_VERTEX * n + 2.0 * 16.0 * laplacian_nnz;
     let factor = FACTOR_BYTES_PER_NLOGN * interior * interior.log2();
     let dense = if dense_boundary {
         (8.0 * (boundary as f64).powi(2)).min(DENSE_MAX_BYTES)
