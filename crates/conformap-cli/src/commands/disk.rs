@@ -393,8 +393,10 @@ fn human_bytes(b: u64) -> String {
 /// and our index arrays). Measured: 590 MiB for the 84 MB OBJ of a 2M-face grid (7.4×).
 pub const READ_BYTES_PER_FILE_BYTE: u64 = 8;
 /// Fixed cost of the process (binary, allocator, threads). Measured: 5.4 MiB in all for
-/// woody.obj (694 vertices).
-const BASE_BYTES: f64 = 8.0 * 1048576.0;
+/// woody.obj (694 vertices) with the release binary; a debug binary's code pages and the
+/// two rayon workers' stacks add about 2 MiB (spothead.obj: 13.8–14.5 MiB peak in debug
+/// runs), so 10 MiB.
+const BASE_BYTES: f64 = 10.0 * 1048576.0;
 /// Bytes per vertex for everything but the factor and the Laplacian's entries: mesh,
 /// half-edges, assembly, intrinsic Delaunay triangulation, blocks, maps, metrics.
 const BYTES_PER_VERTEX: f64 = 500.0;
