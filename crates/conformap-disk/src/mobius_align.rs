@@ -17,10 +17,10 @@
 //! θ`), and the orbit is curved in `θ`. A quasi-Newton method creeps along that curved
 //! valley (a 250k-face square: 49 iterations, 30 of them moving the map's centre by
 //! `|b| ≈ 0.12`). So before the descent the start is moved along the orbit itself: Newton
-//! on the two real parameters of `b`, the 2 × 2 Hessian by finite differences of the
-//! exact chart gradient, backtracking on the curved path. A few products with `A` per
-//! round, two to four rounds. After it, the descent needs 1–7 iterations on the generated
-//! squares and disks and on hand.obj (see the crate README).
+//! on the two real parameters of `b`: the exact chart gradient, a 2 × 2 model by finite
+//! differences of it in the first round and BFGS updates after, backtracking on the curved
+//! path; 5–11 products with `A` in all. After it, the descent needs 1–7 iterations on the
+//! generated squares and disks and on hand.obj (see the crate README).
 
 use num_complex::Complex64;
 

@@ -207,9 +207,13 @@ fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
     let nb = x.len();
     let re: Vec<f64> = x.iter().map(|z| z.re).collect();
     let im: Vec<f64> = x.iter().map(|z| z.im).collect();
-    let columns = |cols: std::ops::Range<usize>| -> (Vec<f64>, Vec<f64>) {
+    // one thread: measured inside a run (the rayon workers asleep between products),
+    // splitting the columns over two threads was slower at every size, 0.66 against 0.43
+    // ms at n_B = 896 and 6.6 against 6.1 ms at 2,828 (it wins only in a tight loop with
+    // the workers spinning)
+    let (yr, yi) = {
         let (mut yr, mut yi) = (vec![0.0; nb], vec![0.0; nb]);
-        for j in cols {
+        for j in 0..nb {
             let col = &a[j * nb + j..(j + 1) * nb];
             let (xr, xi) = (re[j], im[j]);
             let (mut sr, mut si) = ([0.0f64; 4], [0.0f64; 4]);
@@ -253,11 +257,6 @@ fn dense_product(a: &[f64], x: &[Complex64]) -> Vec<Complex64> {
         }
         (yr, yi)
     };
-    // one thread: measured inside a run (the rayon workers asleep between products),
-    // splitting the columns over two threads was slower at every size, 0.66 against 0.43
-    // ms at n_B = 896 and 6.6 against 6.1 ms at 2,828 (it wins only in a tight loop with
-    // the workers spinning)
-    let (yr, yi) = columns(0..nb);
     yr.into_iter()
         .zip(yi)
         .map(|(r, i)| Complex64::new(r, i))

@@ -72,58 +72,64 @@ fn angenent_from_the_schur_complement_is_angenent() {
     }
 }
 
-#[test]
-fn hessian_matches_differences_of_the_gradient() {
+/// Runs `check` with the dense Schur complement of woody.obj, its matrix and the
+/// arc-length boundary angles: the point both Hessian checks below are made at.
+fn at_woody_arc_length(check: impl FnOnce(&Schur<'_, '_>, &[f64], Vec<f64>)) {
     let mesh = fixture("woody.obj");
     let problem = DiskProblem::new(&mesh).expect("disk");
     let schur = Schur::new(&problem, SchurMode::Dense);
     let a = schur.dense().expect("dense").to_vec();
     let fb = crate::initial::arc_length_boundary(&mesh, &problem.partition().boundary);
     let theta = unwrap_boundary(&fb, 0.0).expect("in order").theta;
-    let at = evaluate(&schur, theta.clone());
-    let n = theta.len();
-    let h = hessian(&a, &at);
-    let d: Vec<f64> = (0..n)
-        .map(|k| (3.0 * std::f64::consts::TAU * k as f64 / n as f64).sin() + 0.1 * (k % 7) as f64)
-        .collect();
-    let eps = 1e-5;
-    let gp = evaluate(&schur, step(&theta, &d, eps)).grad;
-    let gm = evaluate(&schur, step(&theta, &d, -eps)).grad;
-    let scale = gp.iter().fold(0.0f64, |m, g| m.max(g.abs())) / eps;
-    for j in 0..n {
-        let fd = (gp[j] - gm[j]) / (2.0 * eps);
-        let hd: f64 = (0..n).map(|k| h[k * n + j] * d[k]).sum();
-        assert!((fd - hd).abs() < 1e-6 * scale, "row {j}: {fd} vs {hd}");
-    }
+    check(&schur, &a, theta);
+}
+
+#[test]
+fn hessian_matches_differences_of_the_gradient() {
+    at_woody_arc_length(|schur, a, theta| {
+        let at = evaluate(schur, theta.clone());
+        let n = theta.len();
+        let h = hessian(a, &at);
+        let d: Vec<f64> = (0..n)
+            .map(|k| {
+                (3.0 * std::f64::consts::TAU * k as f64 / n as f64).sin() + 0.1 * (k % 7) as f64
+            })
+            .collect();
+        let eps = 1e-5;
+        let gp = evaluate(schur, step(&theta, &d, eps)).grad;
+        let gm = evaluate(schur, step(&theta, &d, -eps)).grad;
+        let scale = gp.iter().fold(0.0f64, |m, g| m.max(g.abs())) / eps;
+        for j in 0..n {
+            let fd = (gp[j] - gm[j]) / (2.0 * eps);
+            let hd: f64 = (0..n).map(|k| h[k * n + j] * d[k]).sum();
+            assert!((fd - hd).abs() < 1e-6 * scale, "row {j}: {fd} vs {hd}");
+        }
+    });
 }
 
 /// The banded preconditioner's entries are the whole Hessian's inside the cyclic band
 /// (wrap-around included), read from the other triangle of `A`.
 #[test]
 fn band_of_the_hessian_is_the_hessian_in_the_band() {
-    let mesh = fixture("woody.obj");
-    let problem = DiskProblem::new(&mesh).expect("disk");
-    let schur = Schur::new(&problem, SchurMode::Dense);
-    let a = schur.dense().expect("dense").to_vec();
-    let fb = crate::initial::arc_length_boundary(&mesh, &problem.partition().boundary);
-    let theta = unwrap_boundary(&fb, 0.0).expect("in order").theta;
-    let at = evaluate(&schur, theta);
-    let n = at.theta.len();
-    let h = hessian(&a, &at);
-    let b = 7;
-    let band = hessian_band(&a, &at, b);
-    let scale = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    for (j, row) in band.iter().enumerate() {
-        for (slot, d) in (0..=2 * b).zip(-(b as isize)..=b as isize) {
-            let k = (j as isize + d).rem_euclid(n as isize) as usize;
-            let want = h[k * n + j];
-            assert!(
-                (row[slot] - want).abs() <= 1e-14 * scale,
-                "({j}, {k}): {} vs {want}",
-                row[slot]
-            );
+    at_woody_arc_length(|schur, a, theta| {
+        let at = evaluate(schur, theta);
+        let n = at.theta.len();
+        let h = hessian(a, &at);
+        let b = 7;
+        let band = hessian_band(a, &at, b);
+        let scale = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (j, row) in band.iter().enumerate() {
+            for (slot, d) in (0..=2 * b).zip(-(b as isize)..=b as isize) {
+                let k = (j as isize + d).rem_euclid(n as isize) as usize;
+                let want = h[k * n + j];
+                assert!(
+                    (row[slot] - want).abs() <= 1e-14 * scale,
+                    "({j}, {k}): {} vs {want}",
+                    row[slot]
+                );
+            }
         }
-    }
+    });
 }
 
 /// CCEM-QN energies: the dense Schur complement (formed by the restricted forward solve)

@@ -40,10 +40,7 @@ fn bumpy_grid(n: u32, planar: bool) -> TriMesh {
 /// same solution as a plain factorization, and a matrix of another pattern is refused.
 #[test]
 fn analysis_of_the_interior_pattern_factors_l_ii() {
-    let m = bumpy_grid(10, false);
-    let l = cotan_laplacian(&m);
-    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
-    let blocks = LaplacianBlocks::new(&l, &part);
+    let (m, _, part, blocks) = grid_blocks(10);
     let pattern = interior_pattern(&m, &part);
     assert_eq!(
         pattern.indptr().raw_storage(),
@@ -63,15 +60,22 @@ fn analysis_of_the_interior_pattern_factors_l_ii() {
         assert!((a - c).abs() <= 1e-13 * c.abs().max(1.0), "{a} vs {c}");
     }
     // another pattern: the block of a coarser grid
-    let other = bumpy_grid(9, false);
-    let lo = cotan_laplacian(&other);
-    let po = Partition::new(other.num_vertices(), &other.boundary_loops()[0]);
-    let bo = LaplacianBlocks::new(&lo, &po);
+    let (_, _, _, bo) = grid_blocks(9);
     let analysed = Cholesky::analyse_with(&pattern, &CholeskyOptions::DEFAULT).expect("analyse");
     assert!(matches!(
         analysed.factor(&bo.ii),
         Err(OperatorError::PatternMismatch)
     ));
+}
+
+/// The bumpy grid of `n × n` squares with its cotangent Laplacian, the interior/boundary
+/// partition along its boundary loop, and the blocks of CEM Eq. 9.
+fn grid_blocks(n: u32) -> (TriMesh, sprs::CsMat<f64>, Partition, LaplacianBlocks) {
+    let m = bumpy_grid(n, false);
+    let l = cotan_laplacian(&m);
+    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
+    let blocks = LaplacianBlocks::new(&l, &part);
+    (m, l, part, blocks)
 }
 
 #[test]
@@ -111,10 +115,7 @@ fn dirichlet_energy_of_identity_is_area_and_of_affine_map_is_known() {
 /// solve skips the supernodes they never reach.
 #[test]
 fn sparse_right_hand_sides_solve_to_round_off() {
-    let m = bumpy_grid(24, false);
-    let l = cotan_laplacian(&m);
-    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
-    let blocks = LaplacianBlocks::new(&l, &part);
+    let (_, _, part, blocks) = grid_blocks(24);
     let n = blocks.ii.rows();
     let fb: Vec<Complex64> = (0..part.boundary.len())
         .map(|k| Complex64::from_polar(1.0, 0.1 * k as f64))
@@ -142,10 +143,7 @@ fn sparse_right_hand_sides_solve_to_round_off() {
 
 #[test]
 fn blocks_reassemble_the_laplacian_action() {
-    let m = bumpy_grid(8, false);
-    let l = cotan_laplacian(&m);
-    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
-    let blocks = LaplacianBlocks::new(&l, &part);
+    let (m, l, part, blocks) = grid_blocks(8);
     let f: Vec<Complex64> = (0..m.num_vertices())
         .map(|k| Complex64::new((k as f64).sin(), (k as f64 * 0.3).cos()))
         .collect();
@@ -173,10 +171,7 @@ fn blocks_reassemble_the_laplacian_action() {
 
 #[test]
 fn cholesky_solves_interior_block_to_round_off_with_every_ordering() {
-    let m = bumpy_grid(20, false);
-    let l = cotan_laplacian(&m);
-    let part = Partition::new(m.num_vertices(), &m.boundary_loops()[0]);
-    let blocks = LaplacianBlocks::new(&l, &part);
+    let (_, _, _, blocks) = grid_blocks(20);
     let n = blocks.ii.rows();
     let b: Vec<Complex64> = (0..n)
         .map(|k| Complex64::new(1.0 + (k % 7) as f64, -(k as f64).sqrt()))
