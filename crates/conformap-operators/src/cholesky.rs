@@ -438,6 +438,16 @@ impl Cholesky {
         ))
     }
 
+    /// The multiply–adds of this factor's numeric factorization, counted from its
+    /// structure: per supernode of width `w` with `p` rows below it, `w³/6` (its diagonal
+    /// block), `w²p/2` (the triangular solve of the rows below) and `wp²/2` (its update of
+    /// the ancestors); per column of a simplicial factor with `c` entries below the
+    /// diagonal, `c²/2 + c`. For comparing the work of a factorization with that of
+    /// [`Self::inverse_gram`] ([`Self::inverse_gram_cost`]) in the same units.
+    pub fn factor_cost(&self) -> f64 {
+        inverse_gram::factor_cost(&self.symbolic, &self.values)
+    }
+
     /// `perm_inv[i]`: the position of row `i` in the elimination order.
     fn perm_inv(&self) -> std::borrow::Cow<'_, [usize]> {
         match self.symbolic.perm() {

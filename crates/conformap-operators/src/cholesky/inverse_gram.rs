@@ -220,6 +220,22 @@ pub(super) fn inverse_gram_cost(
     Plan::new(symbolic, values, perm_inv, r).multiply_adds()
 }
 
+/// The multiply–adds of the numeric factorization (see `Cholesky::factor_cost`).
+pub(super) fn factor_cost(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> f64 {
+    let panels = Panels::new(symbolic, values);
+    (0..panels.len())
+        .map(|p| {
+            let panel = panels.get(p);
+            let (w, pl) = (panel.width as f64, panel.pattern.len() as f64);
+            if matches!(panels, Panels::Simplicial { .. }) {
+                0.5 * pl * pl + pl
+            } else {
+                w * w * w / 6.0 + 0.5 * w * w * pl + 0.5 * w * pl * pl
+            }
+        })
+        .sum()
+}
+
 /// `Rᵀ A⁻¹ R` from the factor of `A` (see the module docs). `perm_inv[i]` is the position
 /// of row `i` of `A` in the elimination order. `r` must be CSC with `A`'s number of rows.
 pub(super) fn inverse_gram(
@@ -532,6 +548,34 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn factor_cost_of_a_dense_matrix() {
+        // n I + 1 1ᵀ: one dense block, n³/6 multiply–adds as one supernode, or
+        // Σ c²/2 + c over the columns' c = n − 1 − j entries below the diagonal
+        let n = 60;
+        let mut t = TriMat::new((n, n));
+        for i in 0..n {
+            for j in 0..n {
+                t.add_triplet(i, j, if i == j { n as f64 + 1.0 } else { 1.0 });
+            }
+        }
+        let chol = Cholesky::factor(&t.to_csc()).unwrap();
+        let got = chol.factor_cost();
+        let nf = n as f64;
+        let supernodal = nf * nf * nf / 6.0;
+        let simplicial: f64 = (0..n)
+            .map(|j| {
+                let c = (n - 1 - j) as f64;
+                0.5 * c * c + c
+            })
+            .sum();
+        assert!(
+            (got - supernodal).abs() < 1e-9 * supernodal
+                || (got - simplicial).abs() < 1e-9 * simplicial,
+            "{got} vs {supernodal} or {simplicial}"
+        );
     }
 
     #[test]
