@@ -387,3 +387,65 @@ fn info_reports_topology() {
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("genus 1"));
 }
+
+#[test]
+fn orderings_give_the_same_map() {
+    // the ordering of the factorization changes its cost, not the map: the same E_C to
+    // 1e-9 relative and the same iterations on spothead (4.5k vertices, 48 on the
+    // boundary); `auto` is AMD at this size and the report says which ran
+    let d = tmpdir("orderings");
+    let mut runs = Vec::new();
+    for ordering in ["auto", "amd", "nd"] {
+        let (out, rep) = (
+            d.join(format!("{ordering}.obj")),
+            d.join(format!("{ordering}.json")),
+        );
+        let o = conformap(&[
+            "disk",
+            s(&fixture("spothead.obj")),
+            "-o",
+            s(&out),
+            "--ordering",
+            ordering,
+            "--report",
+            s(&rep),
+        ]);
+        assert!(
+            o.status.success(),
+            "{ordering}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let r = json(&rep);
+        runs.push((
+            r["factorization"]["ordering"].as_str().unwrap().to_string(),
+            r["metrics"]["conformal_energy"].as_f64().unwrap(),
+            r["solver"]["iterations"].as_u64().unwrap(),
+            r["metrics"]["flipped_faces"].as_u64().unwrap(),
+        ));
+    }
+    assert_eq!(runs[0].0, "amd");
+    assert_eq!(runs[1].0, "amd");
+    assert_eq!(runs[2].0, "nested-dissection");
+    for (name, e, its, flipped) in &runs {
+        assert!(
+            (e - runs[1].1).abs() <= 1e-9 * runs[1].1,
+            "{name}: E_C {e} vs {}",
+            runs[1].1
+        );
+        assert_eq!(*its, runs[1].2, "{name}");
+        assert_eq!(*flipped, 0, "{name}");
+    }
+    let o = conformap(&[
+        "disk",
+        s(&fixture("spothead.obj")),
+        "-o",
+        "x.obj",
+        "--ordering",
+        "metis",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "an unknown ordering is a usage error"
+    );
+}

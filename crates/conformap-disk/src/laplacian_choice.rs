@@ -63,6 +63,64 @@ impl LaplacianKind {
     }
 }
 
+/// Interior vertices from which [`FactorOrdering::Auto`] orders `L_II` by nested
+/// dissection rather than AMD: 200,000.
+///
+/// Counted on the generated meshes of `docs/benchmarks.md` (`ordering_probe`): from
+/// 250k interior vertices nested dissection needs fewer factor flops than AMD on the
+/// square (2.9 against 3.1 Gflop at 250k, 7.7 against 9.7 at 500k, 23 against 36 at 1M),
+/// about as many on the disk (8.3 against 8.3 at 500k, 23.9 against 24.1 at 1M), half as
+/// many on the cut spheres (14 against 29 at 500k, 40 against 99 at 1M), and on all of
+/// them 25–50 % fewer for forming the Schur complement; below 130k it needs more on the
+/// square and on hand.obj (0.95 against 0.87 Gflop at 126k, 0.43 against 0.31 on hand).
+pub const NESTED_DISSECTION_MIN_INTERIOR: usize = 200_000;
+
+/// The fill-reducing ordering of the factorization of `L_II`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum FactorOrdering {
+    /// Nested dissection from [`NESTED_DISSECTION_MIN_INTERIOR`] interior vertices, AMD
+    /// below (default).
+    #[default]
+    Auto,
+    /// Approximate minimum degree ([`conformap_operators::Ordering::Amd`]).
+    Amd,
+    /// Nested dissection ([`conformap_operators::Ordering::NestedDissection`]).
+    NestedDissection,
+}
+
+impl FactorOrdering {
+    /// The ordering used for `interior` interior vertices.
+    ///
+    /// ```
+    /// use conformap_disk::{FactorOrdering, NESTED_DISSECTION_MIN_INTERIOR};
+    /// use conformap_operators::Ordering;
+    ///
+    /// let auto = FactorOrdering::Auto;
+    /// assert_eq!(auto.resolve(130_000), Ordering::Amd);
+    /// assert_eq!(auto.resolve(NESTED_DISSECTION_MIN_INTERIOR), Ordering::NestedDissection);
+    /// assert_eq!(FactorOrdering::Amd.resolve(1 << 20), Ordering::Amd);
+    /// ```
+    pub fn resolve(self, interior: usize) -> conformap_operators::Ordering {
+        use conformap_operators::Ordering;
+        match self {
+            Self::Amd => Ordering::Amd,
+            Self::NestedDissection => Ordering::NestedDissection,
+            _ if interior >= NESTED_DISSECTION_MIN_INTERIOR => Ordering::NestedDissection,
+            _ => Ordering::Amd,
+        }
+    }
+
+    /// The name used in reports and on the command line: `auto`, `amd` or `nd`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Amd => "amd",
+            Self::NestedDissection => "nd",
+            _ => "auto",
+        }
+    }
+}
+
 /// Options of [`crate::DiskProblem::with_options`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]
@@ -71,6 +129,8 @@ pub struct ProblemOptions {
     pub laplacian: LaplacianKind,
     /// Options of the intrinsic Delaunay flips. Default: [`IntrinsicOptions::DEFAULT`].
     pub intrinsic: IntrinsicOptions,
+    /// The ordering of the factorization of `L_II`. Default: [`FactorOrdering::Auto`].
+    pub ordering: FactorOrdering,
 }
 
 impl ProblemOptions {
@@ -78,7 +138,15 @@ impl ProblemOptions {
     pub const DEFAULT: Self = Self {
         laplacian: LaplacianKind::Auto,
         intrinsic: IntrinsicOptions::DEFAULT,
+        ordering: FactorOrdering::Auto,
     };
+
+    /// Sets [`Self::ordering`].
+    #[must_use]
+    pub fn with_ordering(mut self, ordering: FactorOrdering) -> Self {
+        self.ordering = ordering;
+        self
+    }
 
     /// Sets [`Self::laplacian`].
     #[must_use]

@@ -92,7 +92,10 @@ pub use koebe_polish::POLISH_MAX_ITER;
 pub use koebe_report::{
     CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
 };
-pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions};
+pub use laplacian_choice::{
+    FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
+    NESTED_DISSECTION_MIN_INTERIOR,
+};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
 pub use report::{

@@ -116,6 +116,8 @@ impl<'m> DiskProblem<'m> {
         // core while the other computes the weights (the intrinsic Laplacian's pattern
         // comes from its flips, so it is analysed after)
         let overlap = options.laplacian != LaplacianKind::IntrinsicDelaunay;
+        let factor_options = CholeskyOptions::DEFAULT
+            .with_ordering(options.ordering.resolve(partition.interior.len()));
         let (assembled, analysis) = rayon::join(
             || {
                 let t = Instant::now();
@@ -127,7 +129,7 @@ impl<'m> DiskProblem<'m> {
             || {
                 overlap.then(|| {
                     let pattern = interior_pattern(mesh, &partition);
-                    Cholesky::analyse_with(&pattern, &CholeskyOptions::DEFAULT)
+                    Cholesky::analyse_with(&pattern, &factor_options)
                 })
             },
         );
@@ -138,10 +140,12 @@ impl<'m> DiskProblem<'m> {
                 Ok(f) => f,
                 // not expected (the pattern is built from the same connectivity), but
                 // then the analysis is simply redone on the real pattern
-                Err(OperatorError::PatternMismatch) => Cholesky::factor(&blocks.ii)?,
+                Err(OperatorError::PatternMismatch) => {
+                    Cholesky::factor_with(&blocks.ii, &factor_options)?
+                }
                 Err(e) => return Err(e.into()),
             },
-            _ => Cholesky::factor(&blocks.ii)?,
+            _ => Cholesky::factor_with(&blocks.ii, &factor_options)?,
         };
         // analysis (on the other core, overlapped) + numeric factorization
         let factor_ms = interior_factor.stats().analyse_ms + interior_factor.stats().factor_ms;

@@ -107,6 +107,9 @@ pub struct FactorStats {
     pub analyse_ms: f64,
     /// Numeric factorization time, milliseconds.
     pub factor_ms: f64,
+    /// The fill-reducing ordering used: `amd`, `nested-dissection`, `identity` or
+    /// `custom`.
+    pub ordering: &'static str,
 }
 
 /// The symbolic analysis of [`Cholesky::analyse_with`], waiting for the values.
@@ -292,6 +295,12 @@ impl Cholesky {
                 supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
                 analyse_ms,
                 factor_ms: 0.0,
+                ordering: match options.ordering {
+                    Ordering::Amd => "amd",
+                    Ordering::NestedDissection => "nested-dissection",
+                    Ordering::Identity => "identity",
+                    Ordering::Custom(_) => "custom",
+                },
             },
             symbolic,
         };

@@ -1,7 +1,7 @@
 //! Benchmarks of `conformap disk` stages on real and generated meshes.
 //!
 //! ```text
-//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH... [gen:250k gen:1m cap:1m ...]
+//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] [--ordering auto|amd|nd] MESH... [gen:250k gen:1m cap:1m ...]
 //! ```
 //!
 //! The default method is `conformap disk`'s, `ccem-qn`. Stages: see [`stages`].
@@ -23,8 +23,8 @@ use crate::stages::StageRow;
 
 fn usage() -> ! {
     eprintln!(
-        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] MESH.obj... [gen:250k|disk:1m|cap:1m ...]\n       \
-         conformap-bench --child MESH METHOD   (internal)"
+        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] [--ordering auto|amd|nd] MESH.obj... [gen:250k|disk:1m|cap:1m ...]\n       \
+         conformap-bench --child MESH METHOD ORDERING   (internal)"
     );
     std::process::exit(2)
 }
@@ -32,10 +32,11 @@ fn usage() -> ! {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--child") {
-        let (Some(mesh), Some(method)) = (args.get(1), args.get(2)) else {
+        let (Some(mesh), Some(method), Some(ordering)) = (args.get(1), args.get(2), args.get(3))
+        else {
             usage()
         };
-        match stages::run_once(Path::new(mesh), method) {
+        match stages::run_once(Path::new(mesh), method, ordering) {
             Ok(row) => println!("{}", row.to_line()),
             Err(e) => {
                 eprintln!("{mesh}: {e}");
@@ -46,6 +47,7 @@ fn main() {
     }
     let mut runs = 3usize;
     let mut method = "ccem-qn".to_string();
+    let mut ordering = "auto".to_string();
     let mut inputs = Vec::new();
     let mut it = args.into_iter();
     while let Some(a) = it.next() {
@@ -57,6 +59,7 @@ fn main() {
                     .unwrap_or_else(|| usage())
             }
             "--method" => method = it.next().unwrap_or_else(|| usage()),
+            "--ordering" => ordering = it.next().unwrap_or_else(|| usage()),
             "-h" | "--help" => usage(),
             _ => inputs.push(a),
         }
@@ -66,7 +69,7 @@ fn main() {
     }
     let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from("conformap-bench"));
     println!(
-        "method `{method}`, the run of median ratio of {runs}, each in its own process; times in ms\n"
+        "method `{method}`, ordering `{ordering}`, the run of median ratio of {runs}, each in its own process; times in ms\n"
     );
     println!("{}", StageRow::header());
     for input in inputs {
@@ -91,6 +94,7 @@ fn main() {
                 .arg("--child")
                 .arg(&path)
                 .arg(&method)
+                .arg(&ordering)
                 .output();
             match out {
                 Ok(o) if o.status.success() => {

@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
+use conformap_disk::{
+    run_disk_method, DiskMethod, DiskOptions, DiskProblem, FactorOrdering, ProblemOptions,
+};
 use conformap_io::{RawMesh, SourceInfo};
 use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
@@ -42,6 +44,28 @@ impl Method {
 
     fn name(self) -> &'static str {
         self.library().name()
+    }
+}
+
+/// The fill-reducing ordering of the factorization of `L_II` (see
+/// `conformap_disk::FactorOrdering`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum OrderingArg {
+    /// Nested dissection from 200,000 interior vertices, AMD below (default).
+    Auto,
+    /// Approximate minimum degree.
+    Amd,
+    /// Nested dissection (breadth-first level separators, AMD on small pieces).
+    Nd,
+}
+
+impl OrderingArg {
+    fn library(self) -> FactorOrdering {
+        match self {
+            Self::Auto => FactorOrdering::Auto,
+            Self::Amd => FactorOrdering::Amd,
+            Self::Nd => FactorOrdering::NestedDissection,
+        }
     }
 }
 
@@ -97,6 +121,10 @@ pub struct DiskArgs {
     /// the cgroup limit); no check where that is unknown.
     #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_memory: Option<u64>,
+    /// Fill-reducing ordering of the factorization of the interior Laplacian (one boundary
+    /// loop; the map is the same to rounding, only its cost changes)
+    #[arg(long, value_enum, default_value_t = OrderingArg::Auto)]
+    pub ordering: OrderingArg,
 }
 
 /// A mesh to map: as read, or repaired.
@@ -190,13 +218,15 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
     }
 
     let in_file = |e: conformap_disk::DiskError| Failure::from(e).in_file(&args.mesh);
-    let mut problem = DiskProblem::new(mesh).map_err(in_file)?;
+    let problem_options = ProblemOptions::DEFAULT.with_ordering(args.ordering.library());
+    let mut problem = DiskProblem::with_options(mesh, &problem_options).map_err(in_file)?;
     let options = DiskOptions::DEFAULT
         .with_max_iter(args.max_iter)
         .with_tol(args.tol)
         .with_keep_folds(args.keep_folds);
     let result = run_disk_method(&mut problem, args.method.library(), &options).map_err(in_file)?;
-    let analyse_ms = problem.interior_factor().stats().analyse_ms;
+    let factor_stats = problem.interior_factor().stats().clone();
+    let analyse_ms = factor_stats.analyse_ms;
     if args.strict && !result.report.converged {
         return Err(Failure::Numerical(format!(
             "{} did not converge in {} iterations (--strict); nothing written",
@@ -245,6 +275,11 @@ pub fn run(args: &DiskArgs) -> Result<(), Failure> {
         "method": args.method.name(),
         "input": InputInfo::new(&args.mesh, mesh),
         "solver": s,
+        "factorization": {
+            "ordering": factor_stats.ordering,
+            "interior_vertices": factor_stats.n,
+            "nnz_factor": factor_stats.nnz_factor,
+        },
         "metrics": metrics,
         "memory": memory.to_json(),
         "timings_ms": timings,
