@@ -29,7 +29,7 @@ pub(crate) fn norm(v: &[f64]) -> f64 {
 
 /// The rounding level of `E_C`, in units of `ε · (½ fᴴAf + |Area|)`: decreases below it are
 /// noise.
-const ROUNDING_ULPS: f64 = 64.0;
+pub(crate) const ROUNDING_ULPS: f64 = 64.0;
 
 /// Why a descent stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
