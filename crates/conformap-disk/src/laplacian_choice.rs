@@ -100,6 +100,8 @@ impl FactorOrdering {
     /// assert_eq!(auto.resolve(130_000), Ordering::Amd);
     /// assert_eq!(auto.resolve(NESTED_DISSECTION_MIN_INTERIOR), Ordering::NestedDissection);
     /// assert_eq!(FactorOrdering::Amd.resolve(1 << 20), Ordering::Amd);
+    /// assert_eq!("nd".parse::<FactorOrdering>(), Ok(FactorOrdering::NestedDissection));
+    /// assert!("metis".parse::<FactorOrdering>().is_err());
     /// ```
     pub fn resolve(self, interior: usize) -> conformap_operators::Ordering {
         use conformap_operators::Ordering;
@@ -111,13 +113,26 @@ impl FactorOrdering {
         }
     }
 
-    /// The name used in reports and on the command line: `auto`, `amd` or `nd`.
+    /// The name used on the command line: `auto`, `amd` or `nd` (parsed back by
+    /// `FromStr`).
     pub fn name(self) -> &'static str {
         match self {
             Self::Amd => "amd",
             Self::NestedDissection => "nd",
             _ => "auto",
         }
+    }
+}
+
+impl std::str::FromStr for FactorOrdering {
+    type Err = String;
+
+    /// Parses [`FactorOrdering::name`].
+    fn from_str(s: &str) -> Result<Self, String> {
+        [Self::Auto, Self::Amd, Self::NestedDissection]
+            .into_iter()
+            .find(|o| o.name() == s)
+            .ok_or_else(|| format!("unknown ordering {s:?} (auto, amd, nd)"))
     }
 }
 

@@ -54,6 +54,19 @@ pub enum Ordering {
     Custom(Vec<usize>),
 }
 
+impl Ordering {
+    /// The name used in [`FactorStats::ordering`] and reports: `amd`,
+    /// `nested-dissection`, `identity` or `custom`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Amd => "amd",
+            Self::NestedDissection => "nested-dissection",
+            Self::Identity => "identity",
+            Self::Custom(_) => "custom",
+        }
+    }
+}
+
 /// Options of [`Cholesky::factor_with`].
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
@@ -107,8 +120,7 @@ pub struct FactorStats {
     pub analyse_ms: f64,
     /// Numeric factorization time, milliseconds.
     pub factor_ms: f64,
-    /// The fill-reducing ordering used: `amd`, `nested-dissection`, `identity` or
-    /// `custom`.
+    /// The fill-reducing ordering used ([`Ordering::name`]).
     pub ordering: &'static str,
 }
 
@@ -295,12 +307,7 @@ impl Cholesky {
                 supernodal: matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
                 analyse_ms,
                 factor_ms: 0.0,
-                ordering: match options.ordering {
-                    Ordering::Amd => "amd",
-                    Ordering::NestedDissection => "nested-dissection",
-                    Ordering::Identity => "identity",
-                    Ordering::Custom(_) => "custom",
-                },
+                ordering: options.ordering.name(),
             },
             symbolic,
         };

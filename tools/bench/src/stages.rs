@@ -219,12 +219,7 @@ fn peak_rss_mib() -> f64 {
 /// factorizations of `L_II` (AMD, and nested dissection too when the pipeline used it).
 pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, String> {
     let method: DiskMethod = method.parse().map_err(|e| format!("{e}"))?;
-    let ordering = match ordering {
-        "auto" => FactorOrdering::Auto,
-        "amd" => FactorOrdering::Amd,
-        "nd" => FactorOrdering::NestedDissection,
-        other => return Err(format!("unknown ordering {other:?} (auto, amd, nd)")),
-    };
+    let ordering: FactorOrdering = ordering.parse()?;
     let t_all = Instant::now();
     let t = Instant::now();
     let loaded = conformap_io::read_mesh(path).map_err(|e| e.to_string())?;
@@ -259,7 +254,7 @@ pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, S
     // the yardstick: one more factorization of the same matrix with the facade's defaults
     // (AMD), and one with nested dissection when the pipeline used it; the fastest of
     // these and the pipeline's own is "one factorization"
-    let nested = stats.ordering == "nested-dissection";
+    let nested = stats.ordering == Ordering::NestedDissection.name();
     let mut reference = stats.analyse_ms + stats.factor_ms;
     let mut orderings = vec![Ordering::Amd];
     if nested {
