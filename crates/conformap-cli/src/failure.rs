@@ -1,4 +1,5 @@
-//! Failures of a command, classified by exit code.
+//! Failures of a command, classified by exit code, and every mapping from a library error
+//! to a failure (and so to an exit code and a hint): the one place where that is decided.
 
 use std::fmt;
 
@@ -203,5 +204,61 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairErro
             )
         }
         other => Failure::input(format!("{}: {other}", raw.source.path.display())),
+    }
+}
+
+impl From<conformap_disk::KoebeError> for Failure {
+    /// The Koebe method's failures: the mesh's topology is bad input (1), a bad `--outer`
+    /// or option a usage error (2), the rest numerical (3).
+    fn from(e: conformap_disk::KoebeError) -> Self {
+        use conformap_disk::KoebeError as E;
+        match e {
+            E::NotGenusZero { .. } => Self::BadInput(
+                e.to_string(),
+                Some(
+                    "`conformap info MESH` shows the topology; a disk map needs genus 0 and \
+                     at least one boundary loop"
+                        .to_string(),
+                ),
+            ),
+            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
+            E::Fill(_) => Self::BadInput(e.to_string(), None),
+            E::Disk(d) => Self::from(d),
+            other => Self::Numerical(other.to_string()),
+        }
+    }
+}
+
+impl From<conformap_global::GlobalError> for Failure {
+    /// Wrong topology, bad options and bad given maps or regions are bad input (exit 1),
+    /// everything else numerical (exit 3).
+    fn from(e: conformap_global::GlobalError) -> Self {
+        use conformap_global::GlobalError as E;
+        let hint = match &e {
+            E::WrongTopology { .. } => Some(
+                "`conformap info MESH` shows the topology: a sphere map needs a closed, \
+                 connected genus-0 mesh, a disk map one boundary loop"
+                    .to_string(),
+            ),
+            _ => None,
+        };
+        match e {
+            E::WrongTopology { .. }
+            | E::MapLength { .. }
+            | E::NonFiniteMap { .. }
+            | E::NotOnSphere { .. }
+            | E::NotInDisk { .. }
+            | E::RegionFaceOutOfRange { .. }
+            | E::DegenerateRegion { .. }
+            | E::InvalidOption { .. } => Self::BadInput(e.to_string(), hint),
+            other => Self::Numerical(other.to_string()),
+        }
+    }
+}
+
+impl From<conformap_metrics::MetricsError> for Failure {
+    /// The metrics of a map the solver computed cannot fail on good input: numerical.
+    fn from(e: conformap_metrics::MetricsError) -> Self {
+        Self::Numerical(e.to_string())
     }
 }

@@ -58,6 +58,7 @@ mod koebe_report;
 mod koebe_step;
 mod laplacian_choice;
 mod line_search;
+mod memory;
 mod method;
 mod mobius_align;
 mod problem;
@@ -96,6 +97,7 @@ pub use laplacian_choice::{
     FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
     NESTED_DISSECTION_MIN_INTERIOR,
 };
+pub use memory::{koebe_peak_bytes, CEM_EXTRA_BYTES_PER_VERTEX};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
 pub use report::{

@@ -89,12 +89,12 @@ pub use report::{SphereReport, StageRecord, Timings};
 pub use source::sphere_source_face;
 pub use sphere::{
     sphere_map, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION, SPHERE_MAX_CORRECTIONS,
-    SPHERE_MIN_GAIN,
+    SPHERE_MIN_GAIN, SPHERE_SOLVE_RESIDUAL_TOL,
 };
 pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
 pub use stereo::{
-    equirectangular_uv, inverse_stereographic, inverse_stereographic_south, stereographic,
-    stereographic_south,
+    equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
+    inverse_stereographic_south, stereographic, stereographic_south,
 };
 
 /// The README's example, compiled and run as a doctest.

@@ -58,6 +58,11 @@ pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
 
+/// Peak memory of reading a mesh file, per byte of the file (the bytes, the text the OBJ
+/// parser holds, its and our index arrays). Measured: 590 MiB for the 84 MB OBJ of a
+/// 2M-face grid (7.4×). Callers use it to refuse, before reading, a file that would not fit.
+pub const READ_PEAK_BYTES_PER_FILE_BYTE: u64 = 8;
+
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

@@ -27,6 +27,7 @@ mod intrinsic;
 mod laplacian;
 mod lu;
 mod mean_value;
+pub mod memory;
 
 pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
@@ -45,6 +46,7 @@ pub use laplacian::{
 };
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
+pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
 
 /// Errors of the operators crate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -8,9 +8,11 @@ use conformap_mesh::{repair, RepairOptions, TriMesh};
 use conformap_operators::{corner_angles, cotan_laplacian, surface_area};
 use serde_json::json;
 
-use crate::commands::disk::{repair_input, repairs_json};
-use crate::commands::say;
+use std::fmt::Write;
+
 use crate::failure::{repair_failure, Failure};
+use crate::pipeline::{repair_input, Outcome};
+use crate::report::{to_value, RepairsReport};
 
 /// Arguments of `conformap info`.
 #[derive(Debug, Args)]
@@ -28,13 +30,13 @@ pub struct InfoArgs {
 /// Runs `conformap info`. Without `--repair`, an invalid mesh is an error whose hint says
 /// what `--repair` would do about it; a valid one lists the repairs that would still apply
 /// (`repairs_available`, e.g. keeping the largest of several components).
-pub fn run(args: &InfoArgs) -> Result<(), Failure> {
+pub fn run(args: &InfoArgs) -> Result<Outcome, Failure> {
     let raw = conformap_io::read_raw_mesh(&args.mesh)?;
     let value = if args.repair {
         let input = repair_input(raw)?;
         let mut value = describe(&input.mesh, &args.mesh);
         if let Some(log) = &input.repairs {
-            value["repairs"] = repairs_json(log);
+            value["repairs"] = to_value(&RepairsReport::new(log));
         }
         value
     } else {
@@ -51,12 +53,15 @@ pub fn run(args: &InfoArgs) -> Result<(), Failure> {
         value["repairs_available"] = json!(available_repairs(&loaded.mesh));
         value
     };
-    if args.json {
-        say(&serde_json::to_string_pretty(&value).unwrap_or_default());
+    let text = if args.json {
+        serde_json::to_string_pretty(&value).unwrap_or_default()
     } else {
-        print_text(&value);
-    }
-    Ok(())
+        text(&value)
+    };
+    Ok(Outcome {
+        stdout: Some(text),
+        ..Outcome::default()
+    })
 }
 
 /// Everything `info` reports about a valid mesh, as JSON.
@@ -143,7 +148,12 @@ fn available_repairs(mesh: &TriMesh) -> Vec<String> {
     }
 }
 
-fn print_text(v: &serde_json::Value) {
+/// The text form of `info`'s description.
+fn text(v: &serde_json::Value) -> String {
+    let mut out = String::new();
+    let mut say = |line: &str| {
+        let _ = writeln!(out, "{line}");
+    };
     let g = |k: &str| v.get(k).cloned().unwrap_or(serde_json::Value::Null);
     say(&format!(
         "mesh:        {}",
@@ -217,4 +227,6 @@ fn print_text(v: &serde_json::Value) {
         };
         say(&format!("repaired:    {applied}"));
     }
+    out.pop();
+    out
 }
