@@ -47,6 +47,7 @@
 
 mod api;
 mod atomic;
+mod coincident;
 mod error;
 mod gltffile;
 mod loaded;
@@ -54,6 +55,7 @@ mod objfile;
 mod raw;
 
 pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
+pub use coincident::{coincident_vertices, weld_coincident, Welded};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};

@@ -70,6 +70,23 @@ impl RawMesh {
         }
     }
 
+    /// The file place of vertex `v` (this mesh's numbering).
+    pub(crate) fn vertex_place(&self, v: usize) -> Option<Origin> {
+        let at = MeshError::UnreferencedVertex {
+            vertex: v,
+            count: 1,
+        };
+        self.origin_of(&at)
+    }
+
+    /// After welding: welded vertex `c` is the former vertex `first[c]`.
+    pub(crate) fn reset_origins(&mut self, first: &[usize]) {
+        if !self.origins.first_file.is_empty() {
+            let old = std::mem::take(&mut self.origins.first_file);
+            self.origins.first_file = first.iter().map(|&i| old[i]).collect();
+        }
+    }
+
     /// The file place of the vertex or face `error` names (its numbering must be this
     /// mesh's): an OBJ line, a glTF primitive vertex or triangle; `None` for whole-mesh
     /// errors or an index past the mesh.

@@ -6,6 +6,6 @@ mod read;
 mod weld;
 mod write;
 
-pub(crate) use read::{read_gltf, read_gltf_raw};
+pub(crate) use read::read_gltf_raw;
 pub(crate) use weld::{face_origin, vertex_origin, PrimRange};
 pub(crate) use write::encode_gltf;

@@ -1,10 +1,10 @@
 //! The scene's triangle soup and its welding into one validated mesh.
 
-use std::collections::HashMap;
 use std::path::Path;
 
+use crate::coincident::classes;
 use crate::error::{Origin, UvProblem};
-use crate::loaded::{Format, SourceInfo, NO_VERTEX};
+use crate::loaded::{Format, SourceInfo};
 use crate::raw::{GltfOrigins, RawMesh};
 
 /// One primitive's share of the concatenated file vertices and faces.
@@ -73,22 +73,7 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
     for &i in soup.faces.iter().flatten() {
         referenced[i as usize] = true;
     }
-    let mut map = vec![NO_VERTEX; nfile];
-    let mut first_file: Vec<usize> = Vec::new();
-    let mut keys: HashMap<[u64; 3], u32> = HashMap::new();
-    for (i, p) in soup.positions.iter().enumerate() {
-        if !referenced[i] {
-            continue;
-        }
-        // + 0.0 turns -0.0 into 0.0, so the two zeros weld
-        let key = p.map(|x| (x + 0.0).to_bits());
-        let next = first_file.len() as u32;
-        let v = *keys.entry(key).or_insert(next);
-        if v == next {
-            first_file.push(i);
-        }
-        map[i] = v;
-    }
+    let (map, first_file) = classes(&soup.positions, Some(&referenced));
     let positions: Vec<[f64; 3]> = first_file.iter().map(|&i| soup.positions[i]).collect();
     let faces: Vec<[u32; 3]> = soup
         .faces
