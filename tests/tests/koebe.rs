@@ -2,7 +2,7 @@
 //! analytic meshes with known answers and on the committed halftunnel fixture; the class-b
 //! meshes of `../shared/meshes/` run with `cargo test --release -p conformap-tests -- --ignored`.
 
-use conformap_disk::{koebe, CircleDomainMap, KoebeError, KoebeOptions, KOEBE_TOL_WITHOUT_POLISH};
+use conformap_disk::{koebe, CircleDomainMap, KoebeError, KoebeOptions};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_testkit::{
@@ -213,10 +213,12 @@ fn koebe_iteration_alone_converges_to_circles() {
     let mesh = read_plain_obj(&fixture_path("halftunnel.obj")).expect("fixture");
     let options = KoebeOptions::DEFAULT
         .with_polish(false)
-        .with_tol(KOEBE_TOL_WITHOUT_POLISH);
+        .with_tol(KoebeOptions::TOL_WITHOUT_POLISH);
     let out = koebe(&mesh, &options).expect("koebe");
     assert!(out.report.converged && out.report.polish.is_none());
-    assert!(*out.report.residual_history.last().unwrap_or(&1.0) <= KOEBE_TOL_WITHOUT_POLISH);
+    assert!(
+        *out.report.residual_history.last().unwrap_or(&1.0) <= KoebeOptions::TOL_WITHOUT_POLISH
+    );
     assert!(worst_residual(&out) < CIRCLE_RESIDUAL, "{:?}", out.circles);
     // linear convergence: at least a factor 5 per sweep after the first
     for w in out.report.residual_history[1..].windows(2) {

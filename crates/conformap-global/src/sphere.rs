@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use conformap_disk::angenent_rhs;
+use conformap_disk::initial::angenent_rhs;
 use conformap_mesh::{Topology, TriMesh};
 use conformap_operators::{
     cotan_laplacian, relative_residual, triangle_angles, Cholesky, LaplacianBlocks, Partition,
@@ -121,7 +121,7 @@ pub struct SphereMap {
 /// 1. **Angenent's map** (CEM Eq. 11–14; Angenent et al. 1999): solve `L f = b` with the
 ///    cotangent Laplacian `L` of the closed mesh, one vertex pinned to 0 (CEM Theorem 1),
 ///    and `b` the discrete dipole `(∂/∂u − i∂/∂v) δ_p` on the source face
-///    ([`conformap_disk::angenent_rhs`]). `f` maps the mesh minus `p` conformally onto the
+///    ([`conformap_disk::initial::angenent_rhs`]). `f` maps the mesh minus `p` conformally onto the
 ///    plane, `p` to `∞`.
 /// 2. **Projection**: `f` is centred on the median of its values and scaled by the median
 ///    distance from it (half the vertices in each hemisphere), then mapped to the sphere by

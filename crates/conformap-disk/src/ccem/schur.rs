@@ -38,16 +38,6 @@ pub enum SchurMode {
     Implicit,
 }
 
-/// Largest dense Schur complement [`SchurMode::Auto`] will form: 512 MiB
-/// (`n_B` ≈ 8,200). Above it the implicit path is used whatever the cost model says.
-pub const DENSE_SCHUR_MAX_BYTES: usize = 512 << 20;
-
-/// Products of `A` [`SchurMode::Auto`] budgets for a run when it compares the two paths:
-/// a converged CCEM-QN run needs 10–60 with the Hessian preconditioner (dense only), 40–550
-/// without (one per line-search evaluation); the model charges this many to both paths,
-/// which favours implicit.
-pub const EXPECTED_SCHUR_PRODUCTS: usize = 200;
-
 /// Nanoseconds per multiply–add of the formation of `A` (dense kernels on supernodes;
 /// measured 0.1–0.4 on 2 cores, depending on the machine's load).
 const FORM_NS_PER_MULADD: f64 = 0.2;
@@ -60,6 +50,16 @@ const PRODUCT_NS_PER_ENTRY: f64 = 0.5;
 const DENSE_FACTOR_NS_PER_MULADD: f64 = 0.1;
 
 impl SchurMode {
+    /// Largest dense Schur complement [`SchurMode::Auto`] will form: 512 MiB
+    /// (`n_B` ≈ 8,200). Above it the implicit path is used whatever the cost model says.
+    pub const DENSE_MAX_BYTES: usize = 512 << 20;
+
+    /// Products of `A` [`SchurMode::Auto`] budgets for a run when it compares the two paths:
+    /// a converged CCEM-QN run needs 10–60 with the Hessian preconditioner (dense only), 40–550
+    /// without (one per line-search evaluation); the model charges this many to both paths,
+    /// which favours implicit.
+    pub const EXPECTED_PRODUCTS: usize = 200;
+
     /// The path actually used for a problem: `Dense` or `Implicit` (never `Auto`).
     ///
     /// Cost model (nanoseconds, measured on 2 cores; see the constants): dense costs the
@@ -67,19 +67,19 @@ impl SchurMode {
     /// [`conformap_operators::Cholesky::inverse_gram_cost`]) at 0.2 ns, two dense
     /// factorizations of `n_B³ / 6` at 0.1 ns, and `P` products of `n_B²` entries at
     /// 0.5 ns; implicit costs `P` two-column solves of `nnz` (the factor's non-zeros) at
-    /// 8 ns, `P =` [`EXPECTED_SCHUR_PRODUCTS`]. Dense is chosen when cheaper and
-    /// `8 n_B²` ≤ [`DENSE_SCHUR_MAX_BYTES`].
+    /// 8 ns, `P =` [`Self::EXPECTED_PRODUCTS`]. Dense is chosen when cheaper and
+    /// `8 n_B²` ≤ [`Self::DENSE_MAX_BYTES`].
     pub fn resolve(self, problem: &DiskProblem<'_>) -> Self {
         match self {
             Self::Dense | Self::Implicit => self,
             _ => {
                 let nb = problem.num_boundary() as f64;
-                if 8.0 * nb * nb > DENSE_SCHUR_MAX_BYTES as f64 {
+                if 8.0 * nb * nb > Self::DENSE_MAX_BYTES as f64 {
                     return Self::Implicit;
                 }
                 let factor = problem.interior_factor();
                 let nnz = factor.stats().nnz_factor as f64;
-                let p = EXPECTED_SCHUR_PRODUCTS as f64;
+                let p = Self::EXPECTED_PRODUCTS as f64;
                 let implicit = SOLVE_NS_PER_NNZ * p * nnz;
                 let Ok(form) = factor.inverse_gram_cost(&problem.blocks().ib) else {
                     return Self::Implicit;

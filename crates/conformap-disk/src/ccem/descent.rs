@@ -14,13 +14,13 @@
 use crate::angles::{
     gaps, hold_gaps_at_floor, largest_gap, max_step, project_to_floor, remove_mean,
 };
-use crate::ccem_options::{CcemOptions, CcemVariant};
-use crate::energy::{dot, evaluate, quadratic_coefficients, step, Eval};
-use crate::hessian::Preconditioner;
-use crate::line_search::{is_wolfe, wolfe_search, LineOutcome, LinePoint, WolfeParams};
-use crate::qn::Bfgs;
-use crate::report::{LineSearchReport, StepRecord};
-use crate::schur::Schur;
+use crate::ccem::energy::{dot, evaluate, quadratic_coefficients, step, Eval};
+use crate::ccem::hessian::Preconditioner;
+use crate::ccem::line_search::{is_wolfe, wolfe_search, LineOutcome, LinePoint, WolfeParams};
+use crate::ccem::options::{CcemOptions, CcemVariant};
+use crate::ccem::qn::Bfgs;
+use crate::ccem::report::{LineSearchReport, StepRecord};
+use crate::ccem::schur::Schur;
 
 /// Euclidean norm.
 pub(crate) fn norm(v: &[f64]) -> f64 {

@@ -5,32 +5,6 @@ use conformap_operators::OperatorError;
 
 use crate::{CemOptions, DiskError};
 
-/// Default stopping tolerance of the Koebe sweeps: stop after the first sweep whose worst
-/// circle residual `max ||f − c| − r| / r` (over every loop's vertices, against its best-fit
-/// circle) is at most `1e-4`. The polish that follows puts every loop on its circle to
-/// rounding and needs only a start near its minimizer (its result is the same from `1e-2`
-/// or `1e-8`, measured on the class-b meshes); the iteration converges linearly, so each
-/// further decade costs about one more sweep. With the polish off, use
-/// [`KOEBE_TOL_WITHOUT_POLISH`].
-pub const KOEBE_TOL: f64 = 1e-4;
-/// The tolerance to use with [`KoebeOptions::polish`] off: `1e-8`, a hundred times below
-/// the `1e-6` the maps are judged by, so the final normalization (which moves the holes)
-/// leaves the residual well inside it.
-pub const KOEBE_TOL_WITHOUT_POLISH: f64 = 1e-8;
-/// Default cap on Koebe sweeps (one sweep maps once with each loop open): `200`. The
-/// iteration converges linearly at a rate set by how close the holes are to each other
-/// (Zeng et al.); the test meshes need far fewer, so the cap only ends a stalled run, which
-/// the report then marks as not converged.
-pub const KOEBE_MAX_SWEEPS: usize = 200;
-/// Default Newton iteration cap of one Koebe step: `50`. Steps after the first sweep start
-/// next to their minimizer and take 1–4 iterations; the first ones, from a rough start,
-/// up to about 15.
-pub const KOEBE_NEWTON_MAX_ITER: usize = 50;
-/// Default Newton step tolerance, radians: a step ends once a full Newton step moves no
-/// boundary angle by more than `1e-11` (quadratic convergence leaves an error far below
-/// that, and `1e-11` is about `1e5` units in the last place of `2π`).
-pub const KOEBE_NEWTON_STEP_TOL: f64 = 1e-11;
-
 /// Options of [`crate::koebe`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
@@ -39,13 +13,25 @@ pub struct KoebeOptions {
     /// Default: `None`, the longest loop (ties: the first), as `conformap disk` chooses.
     pub outer: Option<usize>,
     /// Stop the sweeps once the worst circle residual after a sweep is at most this.
-    /// Default: [`KOEBE_TOL`] (1e-4; [`KOEBE_TOL_WITHOUT_POLISH`] without the polish).
+    /// Default: `1e-4`: the polish that follows puts every loop on its circle to rounding
+    /// and needs only a start near its minimizer (its result is the same from `1e-2` or
+    /// `1e-8`, measured on the class-b meshes); the iteration converges linearly, so each
+    /// further decade costs about one more sweep. With the polish off, use
+    /// [`KoebeOptions::TOL_WITHOUT_POLISH`]. The residual is the worst
+    /// `max ||f − c| − r| / r` over every loop's vertices, against its best-fit circle.
     pub tol: f64,
-    /// Sweep cap. Default: [`KOEBE_MAX_SWEEPS`] (200).
+    /// Sweep cap (one sweep maps once with each loop open). Default: 200. The iteration
+    /// converges linearly at a rate set by how close the holes are to each other (Zeng et
+    /// al.); the test meshes need far fewer, so the cap only ends a stalled run, which the
+    /// report then marks as not converged.
     pub max_sweeps: usize,
-    /// Newton iteration cap per step. Default: [`KOEBE_NEWTON_MAX_ITER`] (50).
+    /// Newton iteration cap per step. Default: 50. Steps after the first sweep start next
+    /// to their minimizer and take 1–4 iterations; the first ones, from a rough start, up
+    /// to about 15.
     pub newton_max_iter: usize,
-    /// Newton step tolerance, radians. Default: [`KOEBE_NEWTON_STEP_TOL`] (1e-11).
+    /// Newton step tolerance, radians: a step ends once a full Newton step moves no
+    /// boundary angle by more than this. Default: `1e-11` (quadratic convergence leaves an
+    /// error far below that, and `1e-11` is about `1e5` units in the last place of `2π`).
     pub newton_step_tol: f64,
     /// CEM options of the first map (CEM Algorithm 2, step 3: the surface with every hole
     /// filled, on [`crate::DiskProblem::new`]). Default: [`CemOptions::DEFAULT`] (the
@@ -57,13 +43,18 @@ pub struct KoebeOptions {
 }
 
 impl KoebeOptions {
+    /// The tolerance to use with [`KoebeOptions::polish`] off: `1e-8`, a hundred times
+    /// below the `1e-6` the maps are judged by, so the final normalization (which moves the
+    /// holes) leaves the residual well inside it.
+    pub const TOL_WITHOUT_POLISH: f64 = 1e-8;
+
     /// The defaults, as a constant.
     pub const DEFAULT: Self = Self {
         outer: None,
-        tol: KOEBE_TOL,
-        max_sweeps: KOEBE_MAX_SWEEPS,
-        newton_max_iter: KOEBE_NEWTON_MAX_ITER,
-        newton_step_tol: KOEBE_NEWTON_STEP_TOL,
+        tol: 1e-4,
+        max_sweeps: 200,
+        newton_max_iter: 50,
+        newton_step_tol: 1e-11,
         initial: CemOptions::DEFAULT,
         polish: true,
     };

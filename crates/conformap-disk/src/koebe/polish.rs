@@ -1,6 +1,6 @@
 //! The last stage of [`crate::koebe`]: from a normalized circle-domain map (or a rough one),
 //! the map of least conformal energy on the surface among all circle-domain maps
-//! ([`crate::circle_polish`]), with its interior.
+//! ([`crate::koebe::polish_newton`]), with its interior.
 
 use std::f64::consts::TAU;
 use std::time::Instant;
@@ -9,15 +9,15 @@ use conformap_mesh::TriMesh;
 use conformap_operators::{cotan_laplacian, Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 
-use crate::circle_fit::fit_circle;
-use crate::circle_polish::{minimize_circles, CircleProblem, CircleState, LoopSpec};
-use crate::koebe_options::{KoebeError, KoebeOptions};
-use crate::koebe_report::PolishReport;
-use crate::koebe_step::dense_schur;
+use crate::koebe::circle_fit::fit_circle;
+use crate::koebe::options::{KoebeError, KoebeOptions};
+use crate::koebe::polish_newton::{minimize_circles, CircleProblem, CircleState, LoopSpec};
+use crate::koebe::report::PolishReport;
+use crate::koebe::step::dense_schur;
 
 /// Newton iterations of the polish at most: `100`. From a converged Koebe map it needs
 /// 3–6; from a rough start (a first map whose holes are far from round) a few dozen.
-pub const POLISH_MAX_ITER: usize = 100;
+pub(crate) const POLISH_MAX_ITER: usize = 100;
 
 /// Polishes `z` (outer loop on the unit circle, its first vertex at angle 0, the reference
 /// hole centred at 0): minimizes the surface's conformal energy over circle-domain maps and

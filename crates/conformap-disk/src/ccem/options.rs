@@ -1,39 +1,9 @@
 //! Options of [`crate::ccem`]: the descent variant, stopping rules, Wolfe constants, the
 //! bijectivity guard and the Schur-complement path, each with its default and why.
 
+use crate::ccem::schur::SchurMode;
 use crate::cem::CemOptions;
-use crate::schur::SchurMode;
 use crate::DiskError;
-
-/// Default iteration cap: 1000. Iterations cost boundary-sized work once `A` is dense, so
-/// the default runs to the energy tolerance, not to the papers' 20 iterations; 1000 is a
-/// backstop that the class-a meshes stay far below.
-pub const CCEM_MAX_ITER: usize = 1000;
-/// Default relative energy tolerance: stop when one step lowers `E_C` by at most
-/// `1e-9 · E_C`. Chosen by measurement: with BFGS, on every class-a mesh it lands within
-/// 1e-6 (relative) of the energy converged at `1e-12`, at 5–30% fewer iterations (the goal
-/// was 0.5%); relative, because the papers' absolute `1e-7` is loose when `E_C ≈ 3e-3`.
-pub const CCEM_TOL: f64 = 1e-9;
-/// Default sufficient-decrease constant `γ₁` of the Wolfe condition (Eq. 4.7): `1e-4`, the
-/// usual choice (Nocedal & Wright §3.1); the paper asks only `0 < γ₁ < γ₂ < 1`.
-pub const CCEM_GAMMA1: f64 = 1e-4;
-/// Default curvature constant `γ₂` (Eq. 4.9): `0.9`, the usual choice for Newton-like and
-/// gradient directions whose first trial step is well scaled (the quadratic step of
-/// Eq. 4.6, or 1 for quasi-Newton): most first trials are accepted.
-pub const CCEM_GAMMA2: f64 = 0.9;
-/// Default `ρ = 0.99`, the paper's value: here the fraction of the way to the nearest
-/// boundary collision a step may take (every gap keeps at least 1% of its length per step).
-pub const CCEM_RHO: f64 = 0.99;
-/// Default floor on the angle between consecutive boundary vertices: `1e-13` radians,
-/// about 140 units in the last place of an angle near `2π` (`8.9e-16`). Closer vertices
-/// are not resolved by f64 (`e^{iθ}` differ in their last bits), so the guard holds such
-/// gaps at the floor and says so in the report.
-pub const CCEM_MIN_GAP: f64 = 1e-13;
-/// Default energy evaluations per line search: 30 (a search needs 1–3 on most steps).
-pub const CCEM_MAX_LINE_EVALS: usize = 30;
-/// Default quasi-Newton memory: 0 = every curvature pair of the run (the full BFGS of
-/// Algorithm 4.2, applied by the two-loop recursion in `O(k n_B)` per iteration).
-pub const CCEM_QN_MEMORY: usize = 0;
 
 /// The descent direction of CCEM.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -81,25 +51,37 @@ pub struct CcemOptions {
     /// Descent direction. Default: [`CcemVariant::QuasiNewton`] (fewer iterations and
     /// line-search evaluations than the gradient method on every class-a mesh).
     pub variant: CcemVariant,
-    /// Iteration cap. Default: [`CCEM_MAX_ITER`] (1000).
+    /// Iteration cap. Default: 1000. Iterations cost boundary-sized work once `A` is
+    /// dense, so the default runs to the energy tolerance, not to the papers' 20
+    /// iterations; 1000 is a backstop that the class-a meshes stay far below.
     pub max_iter: usize,
     /// Relative energy-drop tolerance: the run stops at a Wolfe step that lowers `E_C` by
     /// at most `tol · E_C`. In the quasi-Newton variant such a step first restarts BFGS
     /// from `H₀` when it holds two or more pairs, and the run stops only when the fresh
     /// model meets the tolerance too (its first step, or the predicted decrease `−½ ∇E·d`
-    /// of its preconditioned Newton step). Default: [`CCEM_TOL`] (1e-9).
+    /// of its preconditioned Newton step). Default: `1e-9`, chosen by measurement: with
+    /// BFGS, on every class-a mesh it lands within 1e-6 (relative) of the energy converged
+    /// at `1e-12`, at 5–30% fewer iterations (the goal was 0.5%); relative, because the
+    /// papers' absolute `1e-7` is loose when `E_C ≈ 3e-3`.
     pub tol: f64,
-    /// Sufficient-decrease constant `γ₁` of Eq. 4.7. Default: [`CCEM_GAMMA1`] (1e-4).
+    /// Sufficient-decrease constant `γ₁` of Eq. 4.7. Default: `1e-4`, the usual choice
+    /// (Nocedal & Wright §3.1); the paper asks only `0 < γ₁ < γ₂ < 1`.
     pub gamma1: f64,
-    /// Curvature constant `γ₂` of Eq. 4.9, `γ₁ < γ₂ < 1`. Default: [`CCEM_GAMMA2`] (0.9).
+    /// Curvature constant `γ₂` of Eq. 4.9, `γ₁ < γ₂ < 1`. Default: `0.9`, the usual choice
+    /// for Newton-like and gradient directions whose first trial step is well scaled (the
+    /// quadratic step of Eq. 4.6, or 1 for quasi-Newton): most first trials are accepted.
     pub gamma2: f64,
     /// Fraction of the distance to the nearest boundary collision a step may take.
-    /// Default: [`CCEM_RHO`] (0.99, the paper's ρ).
+    /// Default: `0.99`, the paper's `ρ` (every gap keeps at least 1% of its length per
+    /// step).
     pub rho: f64,
     /// Floor on the angle between consecutive boundary vertices, radians. Default:
-    /// [`CCEM_MIN_GAP`] (1e-13).
+    /// `1e-13`, about 140 units in the last place of an angle near `2π` (`8.9e-16`). Closer
+    /// vertices are not resolved by f64 (`e^{iθ}` differ in their last bits), so the guard
+    /// holds such gaps at the floor and says so in the report.
     pub min_gap: f64,
-    /// Energy evaluations allowed per line search. Default: [`CCEM_MAX_LINE_EVALS`] (30).
+    /// Energy evaluations allowed per line search. Default: 30 (a search needs 1–3 on
+    /// most steps).
     pub max_line_evals: usize,
     /// How the Schur complement is applied. Default: [`SchurMode::Auto`].
     pub schur: SchurMode,
@@ -109,7 +91,9 @@ pub struct CcemOptions {
     /// products, and CCEM-QN reaches the same minimum from it in 1–7 iterations on the
     /// generated meshes and most class-a meshes: see the crate README).
     pub start: CcemStart,
-    /// Quasi-Newton memory (curvature pairs kept; 0 = all). Default: [`CCEM_QN_MEMORY`] (0).
+    /// Quasi-Newton memory (curvature pairs kept; 0 = all). Default: 0, every curvature
+    /// pair of the run (the full BFGS of Algorithm 4.2, applied by the two-loop recursion
+    /// in `O(k n_B)` per iteration).
     pub qn_memory: usize,
     /// Record every accepted step in [`crate::LineSearchReport::steps`] (for checking the Wolfe
     /// conditions). Default: `false`.
@@ -131,34 +115,31 @@ pub struct CcemOptions {
     /// factorization of `L_II` on a height field over a square). A descent preconditioned
     /// by the band re-aligns along the Möbius orbit at its stops (the band leaves out the
     /// far couplings that set those two soft directions) and goes on while that lowers
-    /// `E_C`. Default: [`CCEM_BANDED_HESSIAN_MIN_NB`].
+    /// `E_C`. Default: 2000. Measured (start + iterations, whole Hessian → band): 1M-face
+    /// square (`n_B = 2,828`) 289 → 178 ms, 2M (4,000) 620 → 311 ms; at
+    /// `n_B ≈ 1,000–1,500` the two cost the same or the band more (1M-face cap, 1,050:
+    /// 30 → 35 ms; 250k square, 1,416: 54 → 57 ms). Every class-a mesh (`n_B ≤ 433`,
+    /// maze's implicit `A` aside) keeps the whole Hessian.
     pub banded_hessian_min_nb: usize,
 }
-
-/// Default of [`CcemOptions::banded_hessian_min_nb`]: 2000. Measured (start +
-/// iterations, whole Hessian → band): 1M-face square (`n_B = 2,828`) 289 → 178 ms, 2M
-/// (4,000) 620 → 311 ms; at `n_B ≈ 1,000–1,500` the two cost the same or the band more
-/// (1M-face cap, 1,050: 30 → 35 ms; 250k square, 1,416: 54 → 57 ms). Every class-a mesh
-/// (`n_B ≤ 433`, maze's implicit `A` aside) keeps the whole Hessian.
-pub const CCEM_BANDED_HESSIAN_MIN_NB: usize = 2000;
 
 impl CcemOptions {
     /// The defaults, as a constant.
     pub const DEFAULT: Self = Self {
         variant: CcemVariant::QuasiNewton,
-        max_iter: CCEM_MAX_ITER,
-        tol: CCEM_TOL,
-        gamma1: CCEM_GAMMA1,
-        gamma2: CCEM_GAMMA2,
-        rho: CCEM_RHO,
-        min_gap: CCEM_MIN_GAP,
-        max_line_evals: CCEM_MAX_LINE_EVALS,
+        max_iter: 1000,
+        tol: 1e-9,
+        gamma1: 1e-4,
+        gamma2: 0.9,
+        rho: 0.99,
+        min_gap: 1e-13,
+        max_line_evals: 30,
         schur: SchurMode::Auto,
         start: CcemStart::HarmonicMeasure,
-        qn_memory: CCEM_QN_MEMORY,
+        qn_memory: 0,
         record_steps: false,
         hessian_preconditioner: true,
-        banded_hessian_min_nb: CCEM_BANDED_HESSIAN_MIN_NB,
+        banded_hessian_min_nb: 2000,
     };
 
     /// Sets [`Self::variant`].

@@ -1,22 +1,31 @@
 //! Generalized CEM for multiply-connected surfaces (Yueh, Lin, Wu, Yau 2017, §3.3,
 //! Algorithm 2): Koebe's iteration onto the unit disk with circular holes.
 
+mod circle_fit;
+mod options;
+mod polish;
+mod polish_newton;
+mod report;
+mod step;
+mod step_newton;
+
+pub use options::{KoebeError, KoebeOptions};
+pub use report::{
+    CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
+};
+
 use std::time::Instant;
 
 use conformap_mesh::{fill_all_holes_except, Topology, TriMesh};
 use num_complex::Complex64;
 
-use crate::circle_fit::{
+use crate::koebe::circle_fit::{
     arc_length_angles, concentric_point, disk_automorphism, fit_circle, inner_point,
     relative_residual, unwrapped_angles, Circle,
 };
-use crate::circle_newton::NewtonOptions;
-use crate::koebe_options::{KoebeError, KoebeOptions};
-use crate::koebe_polish::polish;
-use crate::koebe_report::{
-    CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit,
-};
-use crate::koebe_step::{LoopSystem, StepSolve};
+use crate::koebe::polish::polish;
+use crate::koebe::step::{LoopSystem, StepSolve};
+use crate::koebe::step_newton::NewtonOptions;
 use crate::{cem, DiskProblem};
 
 /// The conformal map of a genus-0 mesh with several boundary loops onto the unit disk with
@@ -347,7 +356,7 @@ fn normalize(mesh: &TriMesh, z: &mut [Complex64], outer: usize, reference: Optio
     let fit = fit_circle(&outer_pts);
     // the outer loop runs counter-clockwise around the domain when the domain lies inside
     // its circle; otherwise invert about its centre
-    let inside = crate::circle_fit::winding(&outer_pts, fit.center) == 1;
+    let inside = crate::koebe::circle_fit::winding(&outer_pts, fit.center) == 1;
     for x in z.iter_mut() {
         *x = if inside {
             (*x - fit.center) / fit.radius

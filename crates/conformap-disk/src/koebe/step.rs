@@ -14,8 +14,8 @@ use conformap_operators::{Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 use sprs::CsMat;
 
-use crate::circle_newton::{minimize, NewtonOptions, NewtonResult};
-use crate::koebe_options::KoebeError;
+use crate::koebe::options::KoebeError;
+use crate::koebe::step_newton::{minimize, NewtonOptions, NewtonResult};
 
 /// Columns per blocked solve when forming the Schur complement: `64`, enough for the
 /// multi-column solve to run at dense-kernel speed while the block (`64 n_I` values) stays

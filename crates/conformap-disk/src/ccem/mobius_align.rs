@@ -8,7 +8,7 @@
 //! boundary vertex `j` is `ω_j = −(L_BI x)_j` (`Σ ω_j = 1`), so `θ_j = 2π (Σ_{k<j} ω_k +
 //! ω_j / 2)`. With the dense Schur complement the solve rides along in the pass that forms
 //! `A` (its right-hand side `e_p` is the sparse right-hand side of
-//! [`crate::schur::Schur::with_rhs`]); no dense solve is needed (Angenent's start needs
+//! [`crate::ccem::schur::Schur::with_rhs`]); no dense solve is needed (Angenent's start needs
 //! one of `n_B³ / 3` flops).
 //!
 //! **Möbius alignment.** The continuous conformal energy is invariant under the disk's
@@ -24,12 +24,12 @@
 
 use num_complex::Complex64;
 
-use crate::descent::ROUNDING_ULPS;
-use crate::energy::{evaluate, Eval};
-use crate::schur::Schur;
+use crate::ccem::descent::ROUNDING_ULPS;
+use crate::ccem::energy::{evaluate, Eval};
+use crate::ccem::schur::Schur;
 
 /// Rounds of Newton on the Möbius parameter at most (measured: 2–4 reach the tolerance).
-pub const MOBIUS_ALIGN_ROUNDS: usize = 8;
+pub(crate) const MOBIUS_ALIGN_ROUNDS: usize = 8;
 /// Finite-difference step of the chart Hessian (in `|b|`, the disk's radius being 1):
 /// the Hessian is then accurate to about `1e-5` relative, far more than Newton needs,
 /// while the gradient differences (`~ H h`) stay ten orders of magnitude above their

@@ -7,11 +7,11 @@
 use num_complex::Complex64;
 
 use crate::angles::unwrap_boundary;
-use crate::ccem_tests::fixture;
-use crate::energy::{evaluate, step};
-use crate::hessian::{hessian, hessian_band};
+use crate::ccem::energy::{evaluate, step};
+use crate::ccem::hessian::{hessian, hessian_band};
+use crate::ccem::schur::{form_dense, form_dense_by_solves, Schur, SchurMode};
+use crate::ccem::tests::fixture;
 use crate::initial::{angenent_boundary, angenent_from_schur, angenent_rhs, centre_face};
-use crate::schur::{form_dense, form_dense_by_solves, Schur, SchurMode};
 use crate::{ccem, CcemOptions, CcemStart, CemOptions, DiskProblem};
 
 fn rel(a: f64, b: f64) -> f64 {

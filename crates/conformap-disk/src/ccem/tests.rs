@@ -6,9 +6,9 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 use crate::angles::unwrap_boundary;
-use crate::energy::{dot, evaluate, quadratic_coefficients, step};
+use crate::ccem::energy::{dot, evaluate, quadratic_coefficients, step};
+use crate::ccem::schur::{Schur, SchurMode};
 use crate::initial::arc_length_boundary;
-use crate::schur::{Schur, SchurMode};
 use crate::{cem, CemOptions, DiskProblem};
 
 /// Reads a committed fixture (`<workspace>/fixtures/<name>`, plain `v`/`f` OBJ).

@@ -10,7 +10,7 @@
 
 use std::collections::VecDeque;
 
-use crate::energy::dot;
+use crate::ccem::energy::dot;
 
 /// Curvature pairs with `sᵀy ≤ PAIR_TOL · ‖s‖ ‖y‖` are not stored: they would make the
 /// update indefinite or ill-conditioned (a step cut by the guard can have `sᵀy ≈ 0`).

@@ -1,39 +1,51 @@
 //! CCEM: convergent conformal energy minimization on the boundary angles (Kuo, Lin, Yueh,
 //! Yau 2021, Algorithms 4.1 and 4.2), with a guard that keeps the boundary bijective.
 
+mod descent;
+mod energy;
+mod hessian;
+mod line_search;
+mod mobius_align;
+mod options;
+mod qn;
+mod report;
+mod schur;
+#[cfg(test)]
+mod speed_tests;
+#[cfg(test)]
+pub(crate) mod tests;
+
+pub use options::{CcemOptions, CcemStart, CcemVariant};
+pub use report::{BoundaryReport, CcemStages, LineSearchReport, SchurReport, StepRecord};
+pub use schur::SchurMode;
+
 use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
-use crate::angles::{largest_gap, min_gap, project_to_floor, unwrap_boundary};
-use crate::ccem_options::{CcemOptions, CcemStart, CcemVariant};
+use crate::angles::{
+    largest_gap, min_gap, project_to_floor, unwrap_boundary, GAP_FLOOR_MAX, GAP_FLOOR_STEP,
+};
+use crate::ccem::descent::{Descent, Stop};
+use crate::ccem::energy::{evaluate, Eval};
+use crate::ccem::hessian::{Preconditioner, HESSIAN_BAND};
+use crate::ccem::mobius_align::align;
+use crate::ccem::schur::Schur;
 use crate::cem::CemOptions;
 use crate::cem::{cem, interior_residual};
-use crate::descent::{Descent, Stop};
-use crate::energy::{evaluate, Eval};
-use crate::hessian::{Preconditioner, HESSIAN_BAND};
 use crate::initial::{
     angenent_boundary, angenent_from_schur, angenent_rhs, arc_length_boundary, centre_face,
 };
-use crate::mobius_align::align;
 use crate::problem::DiskProblem;
-use crate::report::{BoundaryReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings};
-use crate::schur::Schur;
+use crate::report::{DiskMap, SolverReport, Timings};
 use crate::DiskError;
-
-/// Each time the map folds with gaps at the floor, the floor is multiplied by this.
-pub const GAP_FLOOR_STEP: f64 = 1e3;
-/// The floor is never raised above this (radians), nor above a tenth of the mean gap
-/// `2π / n_B`: beyond it, the floor would distort the whole boundary. Four floors are
-/// tried from the default `1e-13`: `1e-13, 1e-10, 1e-7, 1e-4`.
-pub const GAP_FLOOR_MAX: f64 = 1e-4;
 
 /// Refreshes of the Hessian preconditioner at a tolerance stop with gaps held at the floor
 /// (each costs one dense factorization, `n_B³ / 6` multiply–adds). igea_open.obj (7 gaps
 /// held): 2 refreshes take the harmonic-measure start's stop from E_C = 2.909386e-2 to
 /// 2.909322e-2, below the 2.909366e-2 that Angenent's start reached.
-pub const HELD_REFRESHES: usize = 4;
+pub(crate) const HELD_REFRESHES: usize = 4;
 
 /// The Hessian preconditioner at `at`: its band from `min_nb` boundary vertices on
 /// ([`CcemOptions::banded_hessian_min_nb`]; falling back to the whole Hessian if the band
@@ -49,7 +61,7 @@ fn precondition(a: &[f64], at: &Eval, min_nb: usize) -> Option<Preconditioner> {
 
 /// Möbius re-alignments at the stops of a descent preconditioned by the banded Hessian
 /// (each a few products with `A`).
-pub const BANDED_REALIGNMENTS: usize = 3;
+pub(crate) const BANDED_REALIGNMENTS: usize = 3;
 
 /// Faces whose image has non-positive signed area: their number and the first one.
 pub(crate) fn flipped_faces(mesh: &TriMesh, f: &[Complex64]) -> (usize, usize) {
@@ -133,7 +145,7 @@ fn harmonic_measure_source(problem: &DiskProblem<'_>, face: usize) -> Option<u32
         .or_else(|| part.interior.first().copied())
 }
 
-/// The harmonic-measure start (`CcemStart::HarmonicMeasure`, see [`crate::mobius_align`]):
+/// The harmonic-measure start (`CcemStart::HarmonicMeasure`, see [`crate::ccem::mobius_align`]):
 /// the fluxes `−L_BI L_II⁻¹ e_p` from the pass that formed `A` (or one solve when `A` is
 /// implicit), accumulated into angles. Negative fluxes (possible where cotangent weights
 /// are negative) count as zero; a start that cannot be formed falls back to the
@@ -254,8 +266,8 @@ fn angenent_start(
 ///   (thin limbs, long corridors). The report's [`BoundaryReport`] says how many.
 /// - Never returns a folded map: if faces of the final map fold while gaps sit at the
 ///   floor (the crowding is below what f64 resolves on this mesh), the floor is raised
-///   ×[`GAP_FLOOR_STEP`] and the minimization continues; if it still folds at
-///   [`GAP_FLOOR_MAX`], or folds without crowding, CCEM refuses with
+///   ×1000 and the minimization continues; if it still folds at
+///   `1e-4` rad (or a tenth of the mean gap), or folds without crowding, CCEM refuses with
 ///   [`DiskError::Folded`].
 /// - Energy never rises on an accepted step; the returned map is the last iterate, which
 ///   is the best.
@@ -265,7 +277,7 @@ fn angenent_start(
 /// [`DiskError::InvalidStart`] when the starting boundary cannot be made to wind once
 /// around the circle; [`DiskError::NonFinite`] if the energy is not finite (cotangent
 /// weights too badly conditioned); [`DiskError::Folded`] when no floor up to
-/// [`GAP_FLOOR_MAX`] gives a map without folded faces.
+/// `1e-4` rad gives a map without folded faces.
 ///
 /// # Examples
 /// ```

@@ -10,7 +10,7 @@
 
 use num_complex::Complex64;
 
-use crate::schur::Schur;
+use crate::ccem::schur::Schur;
 
 /// The energy and gradient at one point `θ`, with the products needed again later.
 #[derive(Debug, Clone)]

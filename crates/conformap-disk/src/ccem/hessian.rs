@@ -28,7 +28,7 @@ use conformap_operators::{Cholesky, CholeskyOptions, DenseCholesky, DenseModifie
 use sprs::CsMat;
 
 use crate::angles::gaps;
-use crate::energy::Eval;
+use crate::ccem::energy::Eval;
 
 /// Floor on the absolute eigenvalues of the blocks of `D` in the modified factorization,
 /// relative to the largest diagonal entry of the Hessian: only guards against zero (the

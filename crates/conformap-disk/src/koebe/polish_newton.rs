@@ -530,7 +530,7 @@ fn shifted_cholesky(h: Vec<f64>, n: usize) -> Option<Vec<f64>> {
         for i in 0..n {
             a[i * n + i] += mu;
         }
-        if crate::circle_newton::cholesky_in_place(&mut a, n) {
+        if crate::koebe::step_newton::cholesky_in_place(&mut a, n) {
             return Some(a);
         }
         mu = if mu == 0.0 { 1e-10 * top } else { mu * 10.0 };
@@ -541,7 +541,7 @@ fn shifted_cholesky(h: Vec<f64>, n: usize) -> Option<Vec<f64>> {
 }
 
 fn cholesky_solve(l: &[f64], n: usize, x: &mut [f64]) {
-    crate::circle_newton::cholesky_solve(l, n, x);
+    crate::koebe::step_newton::cholesky_solve(l, n, x);
 }
 
 #[cfg(test)]
