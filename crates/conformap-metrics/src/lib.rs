@@ -12,6 +12,9 @@
 //!   JSON report (`serde::Serialize`), configured by [`MetricsOptions`].
 //! - Building blocks for solvers: [`dirichlet_energy`] (CEM Eq. 5), [`image_area`] (Eq. 8),
 //!   [`conformal_energy`] (Eq. 7).
+//! - Per face, for pictures and custom statistics: [`face_distortions`] /
+//!   [`face_distortion`] → [`FaceDistortion`] (corner angle differences, `|μ|`, areas), and
+//!   [`isometric_chart`] to judge maps into 3D (a sphere map's chord triangles) the same way.
 //! - [`MetricsError`]: a map that cannot be judged (wrong length, NaN at a vertex, …).
 //!
 //! # Example
@@ -45,6 +48,7 @@ mod error;
 mod face;
 mod metrics;
 mod options;
+mod per_face;
 mod report;
 mod stats;
 
@@ -53,6 +57,7 @@ pub use error::{MetricsError, MAP_ABS_LIMIT};
 pub use face::BELTRAMI_ABS_CAP;
 pub use metrics::planar_map_metrics;
 pub use options::{MetricsOptions, OuterCircle};
+pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
 pub use report::{
     AngleDistortion, AreaDistortion, BeltramiStats, Histogram, LoopCircle, MapMetrics,
 };
