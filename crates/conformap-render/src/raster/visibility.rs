@@ -172,7 +172,7 @@ mod tests {
         let vis = rasterize(16, 16, &screen, 2, |t| tris[t]);
         let covered = vis.face.iter().filter(|&&f| f != NO_FACE).count();
         assert_eq!(covered, 12 * 12);
-        assert!(vis.face.iter().any(|&f| f == 0) && vis.face.iter().any(|&f| f == 1));
+        assert!(vis.face.contains(&0) && vis.face.contains(&1));
     }
 
     #[test]
