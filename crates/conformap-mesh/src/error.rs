@@ -122,4 +122,17 @@ pub enum MeshError {
         /// Number of faces around the vertex.
         faces: usize,
     },
+    /// A topology computation (homology generators, cut graph) needs one connected closed
+    /// surface. Fix: close the boundary loops (or take the double covering of a surface with
+    /// boundary) and keep a single component.
+    #[error(
+        "a homology basis needs one connected closed surface, but the mesh has {components} \
+         component(s) and {boundaries} boundary loop(s)"
+    )]
+    NotClosedSurface {
+        /// Connected components.
+        components: usize,
+        /// Boundary loops.
+        boundaries: usize,
+    },
 }

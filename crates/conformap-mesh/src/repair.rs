@@ -207,7 +207,10 @@ impl RepairLog {
         let f = |f: usize| self.face_to_input.get(f).map_or(f, |&i| i as usize);
         use MeshError as E;
         match error {
-            E::NoVertices | E::NoFaces { .. } | E::TooManyVertices { .. } => error,
+            E::NoVertices
+            | E::NoFaces { .. }
+            | E::TooManyVertices { .. }
+            | E::NotClosedSurface { .. } => error,
             E::NonFiniteCoordinate {
                 vertex,
                 axis,
