@@ -65,7 +65,6 @@ pub use koebe::{
 };
 pub use laplacian_choice::{
     FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
-    NESTED_DISSECTION_MIN_INTERIOR,
 };
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
