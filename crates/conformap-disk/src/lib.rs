@@ -66,7 +66,6 @@ pub use koebe::{
 };
 pub use laplacian_choice::{
     FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
-    NESTED_DISSECTION_MIN_INTERIOR,
 };
 pub use memory::{koebe_peak_bytes, CEM_EXTRA_BYTES_PER_VERTEX};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};

@@ -21,7 +21,6 @@ pub use schur::SchurMode;
 
 use std::time::Instant;
 
-use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 use crate::angles::{
@@ -37,6 +36,7 @@ use crate::cem::{cem, interior_residual};
 use crate::initial::{
     angenent_boundary, angenent_from_schur, angenent_rhs, arc_length_boundary, centre_face,
 };
+use crate::laplacian_choice::count_flipped;
 use crate::problem::DiskProblem;
 use crate::report::{DiskMap, SolverReport, Timings};
 use crate::DiskError;
@@ -62,20 +62,6 @@ fn precondition(a: &[f64], at: &Eval, min_nb: usize) -> Option<Preconditioner> {
 /// Möbius re-alignments at the stops of a descent preconditioned by the banded Hessian
 /// (each a few products with `A`).
 pub(crate) const BANDED_REALIGNMENTS: usize = 3;
-
-/// Faces whose image has non-positive signed area: their number and the first one.
-pub(crate) fn flipped_faces(mesh: &TriMesh, f: &[Complex64]) -> (usize, usize) {
-    let mut count = 0;
-    let mut first = usize::MAX;
-    for (k, t) in mesh.faces().iter().enumerate() {
-        let (a, b, c) = (f[t[0] as usize], f[t[1] as usize], f[t[2] as usize]);
-        if !(((b - a).conj() * (c - a)).im > 0.0) {
-            count += 1;
-            first = first.min(k);
-        }
-    }
-    (count, first)
-}
 
 /// What the start produced.
 struct Start {
@@ -556,7 +542,8 @@ fn minimize_valid(
         cur = last;
         let t = Instant::now();
         let map = problem.harmonic_extension(&cur.f);
-        let (flips, face) = flipped_faces(problem.mesh(), &map);
+        let (flips, face) = count_flipped(problem.mesh(), &map);
+        let face = face.unwrap_or(usize::MAX);
         finish_ms += t.elapsed().as_secs_f64() * 1e3;
         if flips == 0 {
             return Ok((cur, stop, map, 0, finish_ms));

@@ -63,7 +63,7 @@ pub(crate) fn polish(
     }
     let fi = factor.solve_complex(&rhs);
     let map = partition.assemble(&fi, &fb);
-    let flipped = count_flipped(mesh, &map);
+    let flipped = crate::laplacian_choice::count_flipped(mesh, &map).0;
     if let Some(v) = map.iter().position(|z| !z.is_finite()) {
         return Err(KoebeError::NonFinite {
             vertex: v,
@@ -188,15 +188,4 @@ fn loop_angles(pts: &[Complex64], c: Complex64, sign: f64) -> Vec<f64> {
             here
         })
         .collect()
-}
-
-/// Faces of `map` with non-positive signed area.
-pub(crate) fn count_flipped(mesh: &TriMesh, map: &[Complex64]) -> usize {
-    mesh.faces()
-        .iter()
-        .filter(|t| {
-            let (a, b, c) = (map[t[0] as usize], map[t[1] as usize], map[t[2] as usize]);
-            !(((b - a).conj() * (c - a)).im > 0.0)
-        })
-        .count()
 }

@@ -20,6 +20,7 @@
 
 use std::f64::consts::TAU;
 
+use conformap_operators::DenseCholesky;
 use num_complex::Complex64;
 
 /// Largest fraction of an angular gap one step may close (every loop stays in order).
@@ -451,11 +452,14 @@ pub(crate) fn minimize_circles(
             }
         }
         let g: Vec<f64> = idx.iter().map(|&a| g_all[a]).collect();
-        let Some(factor) = shifted_cholesky(h, na) else {
+        let Some(factor) = DenseCholesky::factor_shifted(&h, na, 1)
+            .ok()
+            .map(|(f, _)| f)
+        else {
             break;
         };
         let mut reduced: Vec<f64> = g.iter().map(|v| -v).collect();
-        cholesky_solve(&factor, na, &mut reduced);
+        factor.solve_in_place(&mut reduced, 1);
         let mut step = vec![0.0; np];
         for (a, &p) in idx.iter().enumerate() {
             step[p] = reduced[a];
@@ -516,32 +520,6 @@ pub(crate) fn minimize_circles(
         energy_history: history,
         held_vertices: held,
     }
-}
-
-/// The Cholesky factor of `H + μ I` with the smallest shift `μ ∈ {0, 1e-10 t, …}`
-/// (`t` the largest diagonal entry) that makes it positive definite.
-fn shifted_cholesky(h: Vec<f64>, n: usize) -> Option<Vec<f64>> {
-    let top = (0..n)
-        .fold(0.0f64, |a, i| a.max(h[i * n + i].abs()))
-        .max(1e-300);
-    let mut mu = 0.0;
-    loop {
-        let mut a = h.clone();
-        for i in 0..n {
-            a[i * n + i] += mu;
-        }
-        if crate::koebe::step_newton::cholesky_in_place(&mut a, n) {
-            return Some(a);
-        }
-        mu = if mu == 0.0 { 1e-10 * top } else { mu * 10.0 };
-        if mu > 1e3 * top || !mu.is_finite() {
-            return None;
-        }
-    }
-}
-
-fn cholesky_solve(l: &[f64], n: usize, x: &mut [f64]) {
-    crate::koebe::step_newton::cholesky_solve(l, n, x);
 }
 
 #[cfg(test)]

@@ -23,6 +23,10 @@
 //! multipliers), a step limit that keeps every boundary gap above half its length and above
 //! a floor (the boundary stays in order), and Armijo backtracking on an ℓ1 merit function.
 
+use conformap_operators::DenseCholesky;
+
+use crate::angles::gaps;
+
 /// Largest fraction of a boundary gap one step may close: `0.5`, so every gap keeps at least
 /// half its length per step and the boundary order can never change.
 const GAP_SHRINK: f64 = 0.5;
@@ -231,11 +235,14 @@ pub(crate) fn minimize(
                 }
             }
         }
-        let Some(factor) = shifted_cholesky(h, nf) else {
+        let Some(factor) = DenseCholesky::factor_shifted(&h, nf, 1)
+            .ok()
+            .map(|(f, _)| f)
+        else {
             break;
         };
         let mut step: Vec<f64> = g.iter().map(|v| -v).collect();
-        cholesky_solve(&factor, nf, &mut step);
+        factor.solve_in_place(&mut step, 1);
         let Some(lam) = kkt_correction(&factor, &theta, &free, m, residual, &mut step) else {
             break;
         };
@@ -321,14 +328,13 @@ fn centroid(theta: &[f64]) -> [f64; 2] {
 /// [`minimize`]: with `J` the constraint's Jacobian on the free angles, solves
 /// `(J H⁻¹ Jᵀ) λ = c − J H⁻¹ g` and sets `step = −H⁻¹ (g + Jᵀ λ)`. Returns `λ`.
 fn kkt_correction(
-    factor: &[f64],
+    factor: &DenseCholesky,
     theta: &[f64],
     free: &[usize],
     m: usize,
     c: [f64; 2],
     step: &mut [f64],
 ) -> Option<[f64; 2]> {
-    let nf = free.len();
     let w = 1.0 / m as f64;
     let rows: [Vec<f64>; 2] = [
         free.iter().map(|&i| -w * theta[i].sin()).collect(),
@@ -336,7 +342,7 @@ fn kkt_correction(
     ];
     let mut hinv = rows.clone();
     for r in &mut hinv {
-        cholesky_solve(factor, nf, r);
+        factor.solve_in_place(r, 1);
     }
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let a = [
@@ -382,20 +388,6 @@ fn armijo(
     None
 }
 
-/// The gaps between consecutive angles (the last one wraps around `2π`).
-fn gaps(theta: &[f64]) -> Vec<f64> {
-    let m = theta.len();
-    (0..m)
-        .map(|k| {
-            if k + 1 < m {
-                theta[k + 1] - theta[k]
-            } else {
-                theta[0] + std::f64::consts::TAU - theta[k]
-            }
-        })
-        .collect()
-}
-
 /// Largest `α` such that every gap of `θ + α δ` keeps at least `1 − GAP_SHRINK` of its
 /// current length and stays above its `floor`.
 fn gap_limit(theta: &[f64], delta: &[f64], floor: &[f64]) -> f64 {
@@ -410,76 +402,6 @@ fn gap_limit(theta: &[f64], delta: &[f64], floor: &[f64]) -> f64 {
         }
     }
     alpha
-}
-
-/// The Cholesky factor of `H + μ I` with the smallest shift `μ ∈ {0, 1e-10 t, 1e-9 t, …}`
-/// (`t` the largest diagonal entry) that makes it positive definite; `None` if even
-/// `μ = 1e3 t` does not (a non-finite Hessian).
-fn shifted_cholesky(h: Vec<f64>, n: usize) -> Option<Vec<f64>> {
-    let top = (0..n)
-        .fold(0.0f64, |a, i| a.max(h[i * n + i].abs()))
-        .max(1e-300);
-    let mut mu = 0.0;
-    loop {
-        let mut a = h.clone();
-        for i in 0..n {
-            a[i * n + i] += mu;
-        }
-        if cholesky_in_place(&mut a, n) {
-            return Some(a);
-        }
-        mu = if mu == 0.0 { 1e-10 * top } else { mu * 10.0 };
-        if mu > 1e3 * top || !mu.is_finite() {
-            return None;
-        }
-    }
-}
-
-/// In-place dense Cholesky `A = L Lᵀ` of a symmetric `n × n` matrix (row by row, the
-/// lower factor stored row-major so that every inner product runs over contiguous memory;
-/// for a symmetric input row- and column-major are the same); `false` if a pivot is not
-/// positive.
-pub(crate) fn cholesky_in_place(a: &mut [f64], n: usize) -> bool {
-    for i in 0..n {
-        for j in 0..=i {
-            let (head, tail) = a.split_at_mut(i * n);
-            let row_i = &tail[..n];
-            let row_j = if j == i {
-                row_i
-            } else {
-                &head[j * n..j * n + n]
-            };
-            let dot: f64 = row_i[..j].iter().zip(&row_j[..j]).map(|(x, y)| x * y).sum();
-            let v = tail[j] - dot;
-            if j == i {
-                if !(v > 0.0) {
-                    return false;
-                }
-                tail[i] = v.sqrt();
-            } else {
-                tail[j] = v / head[j * n + j];
-            }
-        }
-    }
-    true
-}
-
-/// Solves `L Lᵀ x = b` in place with the factor of [`cholesky_in_place`] (`L[i][k]` at
-/// `l[i n + k]`).
-pub(crate) fn cholesky_solve(l: &[f64], n: usize, x: &mut [f64]) {
-    for i in 0..n {
-        let row = &l[i * n..i * n + i];
-        let dot: f64 = row.iter().zip(&x[..i]).map(|(a, b)| a * b).sum();
-        x[i] = (x[i] - dot) / l[i * n + i];
-    }
-    for i in (0..n).rev() {
-        let xi = x[i] / l[i * n + i];
-        x[i] = xi;
-        let row = &l[i * n..i * n + i];
-        for (xk, &lik) in x[..i].iter_mut().zip(row) {
-            *xk -= lik * xi;
-        }
-    }
 }
 
 #[cfg(test)]
