@@ -47,6 +47,7 @@
 mod double_cover;
 mod energy;
 mod error;
+mod forms;
 mod metrics;
 mod mobius;
 mod mobius_options;
@@ -63,13 +64,18 @@ mod stereo;
 pub mod doc_support;
 
 pub use double_cover::{
-    double_cover, double_cover_disk_map, DoubleCover, DoubleCoverDisk, DoubleCoverReport,
+    double_cover, double_cover_disk_map, double_cover_surface, DoubleCover, DoubleCoverDisk,
+    DoubleCoverReport,
 };
 pub use energy::{
     disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
     sphere_uniformity_energy, surface_shares,
 };
 pub use error::GlobalError;
+pub use forms::{
+    global_map, reduce_modulus, ConjugateMethod, GlobalMap, GlobalMapOptions, GlobalTimings,
+    LayoutMetrics, Zero, ZeroReport, MODULUS_MAX_STEPS,
+};
 pub use metrics::{
     planar_cross_ratio_distortion, sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics,
     SPHERE_BELTRAMI_CAP,
