@@ -235,7 +235,7 @@ fn methods_table(names: &[String]) -> Res {
     println!("|---|---|---|---|---|---|---|");
     for name in names {
         let Some(mesh) = read(name) else { continue };
-        let mut rows: Vec<(String, Result<(Vec<Complex64>, f64), String>)> = vec![];
+        let mut rows: Vec<MethodRow> = vec![];
         for method in [DiskMethod::CcemQn, DiskMethod::Cem, DiskMethod::Harmonic] {
             let t = Instant::now();
             let out = compute_disk_map(&mesh, method, &DiskOptions::DEFAULT);
@@ -272,3 +272,6 @@ fn methods_table(names: &[String]) -> Res {
     }
     Ok(())
 }
+
+/// One method's result on a mesh: its name, and the map with its time (ms) or the error.
+type MethodRow = (String, Result<(Vec<Complex64>, f64), String>);

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use conformap_disk::{koebe_peak_bytes, ProblemOptions};
+use conformap_disk::{koebe_peak_bytes, unfold_disk_map, ProblemOptions};
 use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem, FactorOrdering};
 use conformap_global::{double_cover_disk_map, SphereOptions};
 use conformap_mesh::{Topology, TriMesh};
@@ -266,7 +266,25 @@ impl DiskArgs {
         let out = double_cover_disk_map(mesh, &SphereOptions::DEFAULT)
             .map_err(|e| input.fail(e.into()))?;
         let t = Instant::now();
-        let metrics = planar_map_metrics(mesh, &out.map, &MetricsOptions::default())?;
+        let mut metrics = planar_map_metrics(mesh, &out.map, &MetricsOptions::default())?;
+        let mut map = out.map.clone();
+        // the covering's map can fold crowded faces (maze, igea_open): the disk crate's
+        // flip-free guard repairs it, as for every other method
+        let mut unfolded = None;
+        if metrics.flipped_faces > 0 && !self.keep_folds {
+            let fail = |e: conformap_disk::DiskError| input.fail(e.into());
+            let problem =
+                DiskProblem::with_options(mesh, &ProblemOptions::DEFAULT).map_err(fail)?;
+            let u = unfold_disk_map(&problem, &map).map_err(fail)?;
+            map = u.map.clone();
+            metrics = planar_map_metrics(mesh, &map, &MetricsOptions::default())?;
+            unfolded = Some(json!({
+                "flipped_before": u.flipped_before,
+                "flipped_after": u.flipped_after,
+                "repaired_gaps": u.repaired_gaps,
+                "gap_floor": u.gap_floor,
+            }));
+        }
         let r = &out.report;
         let summary = format!(
             "{} vertices, {} faces; double cover ({} vertices) and its sphere map; E_C = \
@@ -281,8 +299,8 @@ impl DiskArgs {
         let st = &r.sphere.timings_ms;
         Ok(Solved {
             method: "double-cover".to_string(),
-            uv: disk_uv(&out.map),
-            flat: (planar_points(&out.map), None),
+            uv: disk_uv(&map),
+            flat: (planar_points(&map), None),
             // a direct method: one stage per sphere-map stage; the residual is Angenent's
             solver: SolverSection::new(
                 r.sphere.stages.len().saturating_sub(1),
@@ -299,7 +317,8 @@ impl DiskArgs {
                 "energy_history_is",
                 "mean chord-angle distortion (degrees) of the covering's sphere map after \
                  each stage",
-            ),
+            )
+            .with("unfolded", unfolded),
             param: None,
             sections: serde_json::Map::new(),
             metrics: MetricsSection::planar(metrics),
