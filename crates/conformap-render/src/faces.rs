@@ -94,6 +94,23 @@ pub(crate) struct FaceField {
     pub unit: &'static str,
 }
 
+impl FaceField {
+    /// One colour per face: the scale's colour of its value, the flagging colour where the
+    /// value is undefined (a folded or degenerate face).
+    pub(crate) fn colors(&self) -> Vec<[f32; 3]> {
+        self.values
+            .par_iter()
+            .map(|&v| {
+                if v.is_nan() {
+                    crate::colormap::FLAG_COLOR
+                } else {
+                    self.scale.color(v)
+                }
+            })
+            .collect()
+    }
+}
+
 /// The field of `color` (one of the per-face quantities) from the face distortions.
 pub(crate) fn face_field(d: &[FaceDistortion], color: ColorBy) -> FaceField {
     let bad = |x: &FaceDistortion| x.flipped() || x.degenerate();

@@ -6,7 +6,6 @@ use rayon::prelude::*;
 
 use super::{clamp_barycentric, colorbar, interpolate, TexMap};
 use crate::camera::{cross, dot, normalize, Camera};
-use crate::colormap::FLAG_COLOR;
 use crate::error::RenderError;
 use crate::faces::{distortions, face_field};
 use crate::image::Image;
@@ -112,17 +111,7 @@ pub(crate) fn render_surface(
 
     let image = if quantity {
         let field = face_field(&distortions(mesh, coords), options.color);
-        let colors: Vec<[f32; 3]> = field
-            .values
-            .par_iter()
-            .map(|&v| {
-                if v.is_nan() {
-                    FLAG_COLOR
-                } else {
-                    field.scale.color(v)
-                }
-            })
-            .collect();
+        let colors = field.colors();
         let mut image = resolve(&vis, ss, options.background, |f, x, y| {
             let f = f as usize;
             let b = clamp_barycentric(barycentric(tri(f), x, y).unwrap_or([1.0 / 3.0; 3]));
