@@ -3,7 +3,7 @@
 use clap::{Parser, Subcommand};
 
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::{mobius::MobiusArgs, sphere::SphereArgs};
+use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, sphere::SphereArgs};
 use crate::failure::Failure;
 use crate::pipeline::{run_map, Outcome};
 
@@ -29,6 +29,9 @@ pub enum Command {
     Sphere(SphereArgs),
     /// Optimal Möbius transformation of a disk or sphere map (uniformity or emphasized area).
     Mobius(MobiusArgs),
+    /// Global conformal map of a surface with handles (genus ≥ 1) or several boundary
+    /// loops by a holomorphic 1-form: a seamed layout, one `vt` per corner.
+    Global(GlobalArgs),
 }
 
 impl Command {
@@ -43,6 +46,7 @@ impl Command {
             Self::Disk(args) => run_map(args),
             Self::Sphere(args) => run_map(args),
             Self::Mobius(args) => run_map(args),
+            Self::Global(args) => run_map(args),
         }
     }
 }

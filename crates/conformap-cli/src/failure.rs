@@ -86,9 +86,16 @@ fn io_hint(e: &conformap_io::IoError) -> Option<&'static str> {
             "re-export the asset, or check it with the Khronos glTF validator; the message \
              names the mesh, primitive and accessor"
         }
+        E::NotPerVertexUv {
+            problem: conformap_io::UvProblem::Missing { .. },
+            ..
+        } => {
+            "give every face corner a texture coordinate (f v/vt), or pass the map as a flat \
+             mesh without any"
+        }
         E::NotPerVertexUv { .. } => {
             "export the map with one texture coordinate per vertex (no seams), or pass it as \
-             a flat mesh"
+             a flat mesh; `conformap metrics` also judges seamed maps"
         }
         E::Backend { .. } => "this is a conformap bug: please report it with the file",
         _ => return None,
@@ -236,8 +243,9 @@ impl From<conformap_global::GlobalError> for Failure {
         use conformap_global::GlobalError as E;
         let hint = match &e {
             E::WrongTopology { .. } => Some(
-                "`conformap info MESH` shows the topology: a sphere map needs a closed, \
-                 connected genus-0 mesh, a disk map one boundary loop"
+                "`conformap info MESH` shows the topology: `sphere` maps closed genus-0 \
+                 meshes, `disk` meshes with boundary loops and no handles, `global` meshes \
+                 with handles or several boundary loops"
                     .to_string(),
             ),
             _ => None,

@@ -321,6 +321,22 @@ pub enum WriteProblem {
         /// The value.
         value: f64,
     },
+    /// A seamed map has not one triple of texture-coordinate indices per face.
+    CornerFaceCount {
+        /// Number of faces of the mesh.
+        expected: usize,
+        /// Number of index triples given.
+        found: usize,
+    },
+    /// A face corner refers to a texture coordinate that does not exist.
+    TexcoordIndex {
+        /// 0-based face.
+        face: usize,
+        /// The index found.
+        index: u32,
+        /// Number of texture coordinates.
+        count: usize,
+    },
     /// More data than the format can index (glTF byte lengths are u32 in GLB).
     TooLarge,
     /// No vertex or no triangle: glTF accessors cannot be empty.
@@ -345,6 +361,14 @@ impl fmt::Display for WriteProblem {
             Self::NonFinite { vertex, value } => write!(
                 f,
                 "vertex {vertex} has a value that cannot be written ({value})"
+            ),
+            Self::CornerFaceCount { expected, found } => write!(
+                f,
+                "{found} texture-coordinate triples for {expected} faces (need one per face)"
+            ),
+            Self::TexcoordIndex { face, index, count } => write!(
+                f,
+                "face {face} refers to texture coordinate {index}, but there are only {count}"
             ),
             Self::TooLarge => write!(f, "the mesh is too large for the format"),
             Self::Empty => write!(f, "glTF needs at least one vertex and one triangle"),

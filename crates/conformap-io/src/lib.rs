@@ -10,6 +10,7 @@
 //!   validated mesh, per-vertex texture coordinates if the file has them, and a
 //!   [`SourceInfo`] mapping mesh vertices and faces back to the file.
 //! - [`write_mesh_with_uv`]: the mesh with one texture coordinate per vertex;
+//!   [`write_mesh_with_corner_uv`]: the mesh with a seamed map ([`CornerUv`], `f v/vt`);
 //!   [`write_flat`]: any points and triangles (a flat or spherical map). Output appears
 //!   complete or not at all.
 //! - [`read_raw_mesh`] / [`read_raw_mesh_from_bytes`]: the same parsing without validation,
@@ -48,6 +49,7 @@
 mod api;
 mod atomic;
 mod coincident;
+mod corner_uv;
 mod error;
 mod gltffile;
 mod loaded;
@@ -56,6 +58,7 @@ mod raw;
 
 pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
 pub use coincident::{coincident_vertices, weld_coincident, Welded};
+pub use corner_uv::{write_mesh_with_corner_uv, CornerUv};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};

@@ -55,7 +55,7 @@ mod stats;
 pub use energy::{conformal_energy, dirichlet_energy, image_area};
 pub use error::{MetricsError, MAP_ABS_LIMIT};
 pub use face::BELTRAMI_ABS_CAP;
-pub use metrics::planar_map_metrics;
+pub use metrics::{corner_map_metrics, planar_map_metrics};
 pub use options::{MetricsOptions, OuterCircle};
 pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
 pub use report::{

@@ -229,7 +229,7 @@ impl DiskArgs {
         );
         Ok(Solved {
             method: method.name().to_string(),
-            uv: disk_uv(&result.map),
+            uv: disk_uv(&result.map).into(),
             flat: (planar_points(&result.map), None),
             solver: SolverSection::new(
                 s.iterations,
@@ -299,7 +299,7 @@ impl DiskArgs {
         let st = &r.sphere.timings_ms;
         Ok(Solved {
             method: "double-cover".to_string(),
-            uv: disk_uv(&map),
+            uv: disk_uv(&map).into(),
             flat: (planar_points(&map), None),
             // a direct method: one stage per sphere-map stage; the residual is Angenent's
             solver: SolverSection::new(

@@ -78,7 +78,7 @@ pub fn solve(args: &DiskArgs, input: &Input) -> Result<Solved, Failure> {
     let tm = &r.timings_ms;
     Ok(Solved {
         method: "koebe".to_string(),
-        uv: disk_uv(&result.map),
+        uv: disk_uv(&result.map).into(),
         flat: (planar_points(&result.map), None),
         solver: SolverSection::new(r.sweeps, r.converged, energies, residual, r),
         param: None,

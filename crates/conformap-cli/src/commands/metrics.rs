@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use std::fmt::Write;
 
 use clap::Args;
-use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
-use crate::commands::param::read_map_file;
+use crate::commands::param::{read_map_file, PlanarMap};
 use crate::failure::Failure;
 use crate::pipeline::Outcome;
 use crate::report::InputInfo;
@@ -19,8 +19,10 @@ pub struct MetricsArgs {
     /// The 3D mesh.
     pub mesh: PathBuf,
     /// The map: an OBJ/glTF with one texture coordinate per vertex (read as
-    /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), or a flat mesh
-    /// without texture coordinates whose (x, y) are the map.
+    /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), a seamed map
+    /// with texture coordinates per face corner (`f v/vt`, as `global` writes; read as
+    /// (u, v) = vt, no circle fits), or a flat mesh without texture coordinates whose
+    /// (x, y) are the map.
     pub param: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -32,9 +34,12 @@ pub fn run(args: &MetricsArgs) -> Result<Outcome, Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
     let param = read_map_file(&args.param, &args.mesh, mesh)?;
-    let (map, source) = param.planar();
-    let metrics = planar_map_metrics(mesh, &map, &MetricsOptions::default())
-        .map_err(|e| Failure::input(format!("{}: {e}", args.param.display())))?;
+    let (map, source) = param.planar_map();
+    let metrics = match &map {
+        PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
+        PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
+    }
+    .map_err(|e| Failure::input(format!("{}: {e}", args.param.display())))?;
     let value = json!({
         "conformap_version": env!("CARGO_PKG_VERSION"),
         "command": "metrics",

@@ -180,7 +180,7 @@ impl MapCommand for MobiusArgs {
         let summary = summary(self, &mobius);
         Ok(Solved {
             method: format!("newton-{}", mobius.objective),
-            uv: moved.uv,
+            uv: moved.uv.into(),
             flat: (moved.flat, None),
             solver,
             param: Some(ParamInfo {
@@ -215,7 +215,7 @@ impl MobiusArgs {
         objective: &MobiusObjective,
         options: &MobiusOptions,
     ) -> Result<Moved, Failure> {
-        let (map, from) = param.planar();
+        let (map, from) = param.planar()?;
         let best =
             optimize_disk_mobius(mesh, &map, objective, options).map_err(|e| self.fail(e))?;
         let before = planar_map_metrics(mesh, &map, &MetricsOptions::default())

@@ -1,8 +1,9 @@
-//! One module per subcommand. The map commands (`disk`, `sphere`, `mobius`) implement
+//! One module per subcommand. The map commands (`disk`, `sphere`, `mobius`, `global`) implement
 //! [`crate::pipeline::MapCommand`]; `info` and `metrics` only read and describe.
 
 pub mod disk;
 pub mod disk_holes;
+pub mod global;
 pub mod info;
 pub mod metrics;
 pub mod mobius;

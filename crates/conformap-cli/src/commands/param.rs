@@ -1,42 +1,93 @@
 //! Map files (`PARAM` of `metrics` and `mobius`) and face-region files.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use conformap_io::CornerUv;
 
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 use crate::failure::Failure;
 
-/// A map read by [`read_map_file`]: its positions and, when the file has them, one texture
-/// coordinate per vertex.
+/// A map read by [`read_map_file`]: its positions and, when the file has them, its texture
+/// coordinates (one per vertex, or per face corner for a seamed map).
 #[derive(Debug)]
 pub struct MapFile {
+    /// The file.
+    pub path: PathBuf,
     /// Vertex positions as written (a flat map's `(u, v, 0)`, a sphere map's points, or
     /// the 3D mesh beside texture coordinates).
     pub positions: Vec<[f64; 3]>,
     /// Texture coordinates, one per vertex.
     pub uv: Option<Vec<[f64; 2]>>,
+    /// Texture coordinates per face corner, when they are not one per vertex (a seam).
+    pub corner_uv: Option<CornerUv>,
+}
+
+/// A planar map: one value per vertex, or per face corner (`3 f + k`) for a seamed map.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlanarMap {
+    /// One value per vertex.
+    PerVertex(Vec<Complex64>),
+    /// One value per face corner.
+    PerCorner(Vec<Complex64>),
 }
 
 impl MapFile {
-    /// The planar map it holds: `u = 2·vt_x − 1, v = 2·vt_y − 1` from texture coordinates
-    /// (the inverse of what `disk` writes), else the positions' `(x, y)`; with the name of
-    /// its source for the report.
-    pub fn planar(&self) -> (Vec<Complex64>, &'static str) {
-        match &self.uv {
-            Some(uv) => (
-                uv.iter()
-                    .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
-                    .collect(),
+    /// The planar map it holds, with the name of its source for the report: per-vertex
+    /// texture coordinates as `u = 2·vt_x − 1, v = 2·vt_y − 1` (the inverse of what `disk`
+    /// writes); seamed texture coordinates as `(u, v) = vt`, per corner; else the
+    /// positions' `(x, y)`.
+    pub fn planar_map(&self) -> (PlanarMap, &'static str) {
+        match (&self.uv, &self.corner_uv) {
+            (Some(uv), _) => (
+                PlanarMap::PerVertex(
+                    uv.iter()
+                        .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
+                        .collect(),
+                ),
                 "texture coordinates",
             ),
-            None => (
-                self.positions
-                    .iter()
-                    .map(|p| Complex64::new(p[0], p[1]))
-                    .collect(),
+            (None, Some(c)) => (
+                PlanarMap::PerCorner(
+                    (0..c.faces.len())
+                        .flat_map(|f| (0..3).map(move |k| c.corner(f, k)))
+                        .map(|t| Complex64::new(t[0], t[1]))
+                        .collect(),
+                ),
+                "seamed texture coordinates",
+            ),
+            (None, None) => (
+                PlanarMap::PerVertex(
+                    self.positions
+                        .iter()
+                        .map(|p| Complex64::new(p[0], p[1]))
+                        .collect(),
+                ),
                 "flat positions",
             ),
+        }
+    }
+
+    /// The planar map with one value per vertex, for commands that need one (`mobius`).
+    ///
+    /// # Errors
+    /// [`Failure::BadInput`] for a seamed map.
+    pub fn planar(&self) -> Result<(Vec<Complex64>, &'static str), Failure> {
+        match self.planar_map() {
+            (PlanarMap::PerVertex(map), from) => Ok((map, from)),
+            (PlanarMap::PerCorner(_), _) => Err(Failure::BadInput(
+                format!(
+                    "{}: the map has seams (a vertex has different texture coordinates in \
+                     different faces); this command needs one value per vertex",
+                    self.path.display()
+                ),
+                Some(
+                    "pass a disk map (the -o or --flat output of `conformap disk`); a seamed \
+                     map is judged by `conformap metrics`"
+                        .to_string(),
+                ),
+            )),
         }
     }
 }
@@ -87,6 +138,18 @@ pub fn read_map_file(param: &Path, mesh_path: &Path, mesh: &TriMesh) -> Result<M
             ),
         ));
     }
+    if let Some(problem @ conformap_io::UvProblem::Missing { .. }) = &raw.uv_problem {
+        return Err(conformap_io::IoError::NotPerVertexUv {
+            path: param.to_path_buf(),
+            problem: problem.clone(),
+        }
+        .into());
+    }
+    let corner_uv = if raw.uv.is_none() {
+        raw.corner_uv
+    } else {
+        None
+    };
     let uv = match raw.uv {
         Some(uv) => Some(
             uv.into_iter()
@@ -111,8 +174,10 @@ pub fn read_map_file(param: &Path, mesh_path: &Path, mesh: &TriMesh) -> Result<M
         None => None,
     };
     Ok(MapFile {
+        path: param.to_path_buf(),
         positions: raw.positions,
         uv,
+        corner_uv,
     })
 }
 

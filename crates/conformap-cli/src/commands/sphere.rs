@@ -152,7 +152,11 @@ impl MapCommand for SphereArgs {
         };
         Ok(Solved {
             method,
-            uv: points.iter().map(|&p| equirectangular_uv(p)).collect(),
+            uv: points
+                .iter()
+                .map(|&p| equirectangular_uv(p))
+                .collect::<Vec<_>>()
+                .into(),
             flat: (points, None),
             solver,
             param: None,

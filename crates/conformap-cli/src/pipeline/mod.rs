@@ -69,8 +69,8 @@ pub trait MapCommand {
 pub struct Solved {
     /// The report's `method`.
     pub method: String,
-    /// Texture coordinates, one per vertex of the mesh.
-    pub uv: Vec<[f64; 2]>,
+    /// The texture coordinates written with the mesh to `-o`.
+    pub uv: TexCoords,
     /// The `--flat` mesh: points, and faces when they are not the mesh's.
     pub flat: (Vec<[f64; 3]>, Option<Vec<[u32; 3]>>),
     /// The report's `solver` object.
@@ -89,6 +89,30 @@ pub struct Solved {
     /// The summary line (without the mesh path and the total time, which the pipeline
     /// adds).
     pub summary: String,
+}
+
+/// The texture coordinates a command writes to `-o`.
+#[derive(Debug)]
+pub enum TexCoords {
+    /// One per vertex of the input mesh (disk, holes, sphere, mobius).
+    PerVertex(Vec<[f64; 2]>),
+    /// Per face corner of the input mesh: a seamed map (`global`), written as `f v/vt`.
+    PerCorner(conformap_io::CornerUv),
+    /// Per face corner of a refinement of the input mesh the command had to make (a
+    /// double covering that split boundary chords): the refined mesh is written instead of
+    /// the input, and the report says so.
+    Refined {
+        /// The mesh written (its first vertices are the input's, in the input's order).
+        mesh: TriMesh,
+        /// Its seamed map.
+        uv: conformap_io::CornerUv,
+    },
+}
+
+impl From<Vec<[f64; 2]>> for TexCoords {
+    fn from(uv: Vec<[f64; 2]>) -> Self {
+        Self::PerVertex(uv)
+    }
 }
 
 /// What a command did: its report (map commands), what it prints on stdout (`info`,
@@ -137,7 +161,13 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
 
     let t = Instant::now();
     let mut staged = Staged::new();
-    staged.mesh_with_uv(&output.output, mesh, &solved.uv, input.file_layout())?;
+    match &solved.uv {
+        TexCoords::PerVertex(uv) => {
+            staged.mesh_with_uv(&output.output, mesh, uv, input.file_layout())?;
+        }
+        TexCoords::PerCorner(uv) => staged.mesh_with_corner_uv(&output.output, mesh, uv)?,
+        TexCoords::Refined { mesh, uv } => staged.mesh_with_corner_uv(&output.output, mesh, uv)?,
+    }
     if let Some(path) = &output.flat {
         let faces = solved.flat.1.as_deref().unwrap_or(mesh.faces());
         staged.flat(path, &solved.flat.0, faces)?;

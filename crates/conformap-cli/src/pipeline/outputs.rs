@@ -164,6 +164,18 @@ impl Staged {
             .map_err(|e| renamed(e.into(), &path, target))
     }
 
+    /// Stages `mesh` with a seamed map (see [`conformap_io::write_mesh_with_corner_uv`]).
+    pub fn mesh_with_corner_uv(
+        &mut self,
+        target: &Path,
+        mesh: &TriMesh,
+        uv: &conformap_io::CornerUv,
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_mesh_with_corner_uv(&path, mesh, uv)
+            .map_err(|e| renamed(e.into(), &path, target))
+    }
+
     /// Stages points and triangles (see [`conformap_io::write_flat`]).
     pub fn flat(
         &mut self,

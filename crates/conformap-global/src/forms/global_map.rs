@@ -18,7 +18,7 @@ use crate::forms::periods::{
     bilinear_residual, holomorphic_basis, period_matrix, reduce_modulus, ComplexCochain,
 };
 use crate::forms::quality::{layout_metrics, uniformity_energy, LayoutMetrics};
-use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch, ZeroReport};
+use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch, Zero, ZeroReport};
 use crate::GlobalError;
 
 /// Wall-clock milliseconds by step of [`global_map`].
@@ -135,6 +135,35 @@ impl GlobalMap {
     /// UV of every corner of the input's faces (`3 f + k`).
     pub fn input_corner_uv(&self) -> &[Complex64] {
         &self.corner_uv[..3 * self.input_faces]
+    }
+
+    /// Folded faces of the input's layout (non-positive signed area): `(at zeros, outside)`,
+    /// a face counting as at a zero when one of its vertices lies in a zero cluster.
+    pub fn input_folds(&self) -> (usize, usize) {
+        let uv = self.input_corner_uv();
+        let near = &self.zeros.in_zero_cluster;
+        let (mut at, mut outside) = (0, 0);
+        for (f, t) in self.surface.faces()[..self.input_faces].iter().enumerate() {
+            let area = crate::forms::zeros::signed_area(uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]);
+            if area > 0.0 {
+                continue;
+            }
+            if t.iter().any(|&v| near[v as usize]) {
+                at += 1;
+            } else {
+                outside += 1;
+            }
+        }
+        (at, outside)
+    }
+
+    /// The zeros of the form at the input's vertices (all of them for a closed input; for
+    /// a double covering, those of the first copy and its boundary).
+    pub fn input_zeros(&self) -> impl Iterator<Item = &Zero> {
+        self.zeros
+            .zeros
+            .iter()
+            .filter(|z| z.vertex < self.input_vertices)
     }
 
     /// `(min, max)` of the finite conformal factors of the input's vertices.

@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use crate::coincident::classes;
+use crate::corner_uv::CornerUv;
 use crate::error::{Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
 use crate::raw::{GltfOrigins, RawMesh};
@@ -96,6 +97,17 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
     }
     let uv = weld_uv(&soup, &map, &referenced, first_file.len())
         .map(|uv| uv.into_iter().map(Some).collect());
+    // per corner: the file vertices' coordinates under the file's faces (seams included)
+    let corner_uv = soup
+        .faces
+        .iter()
+        .flatten()
+        .all(|&i| soup.uv[i as usize].is_some())
+        .then(|| CornerUv {
+            texcoords: soup.uv.iter().map(|t| t.unwrap_or([0.0, 0.0])).collect(),
+            faces: soup.faces.clone(),
+        })
+        .filter(|c| !c.faces.is_empty());
     let mut source = SourceInfo::new(path.to_path_buf(), format);
     source.file_vertex_count = nfile;
     source.weld_map = Some(map);
@@ -105,7 +117,7 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
         prims: soup.prims,
         first_file,
     };
-    RawMesh::new(positions, faces, uv, source, Some(origins))
+    RawMesh::new(positions, faces, uv, source, Some(origins)).with_corner_uv(corner_uv)
 }
 
 /// One texture coordinate per welded vertex, or the first seam / missing one.

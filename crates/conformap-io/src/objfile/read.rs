@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::lines::split_chunks;
 use super::parse::{count, parse_chunk, Counts, Parsed, NO_UV};
+use crate::corner_uv::CornerUv;
 use crate::error::{IoError, Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
 use crate::raw::RawMesh;
@@ -71,6 +72,7 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
     }
     let whole = concat(parsed);
     let uv = per_vertex_uv(&whole);
+    let corner_uv = corner_uv(&whole);
     let mut source = SourceInfo::new(path.to_path_buf(), Format::Obj);
     source.file_vertex_count = whole.positions.len();
     if whole.noted > 0 {
@@ -81,7 +83,7 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
     }
     source.vertex_lines = Some(whole.vertex_lines);
     source.face_lines = Some(whole.face_lines);
-    Ok(RawMesh::new(whole.positions, whole.faces, uv, source, None))
+    Ok(RawMesh::new(whole.positions, whole.faces, uv, source, None).with_corner_uv(corner_uv))
 }
 
 /// The chunks' pieces joined in file order.
@@ -106,6 +108,20 @@ fn concat(mut parsed: Vec<Parsed>) -> Parsed {
         noted: parsed.iter().map(|p| p.noted).sum(),
         error: None,
     }
+}
+
+/// The texture coordinate of every corner, when every corner has one.
+fn corner_uv(s: &Parsed) -> Option<CornerUv> {
+    let n = s.texcoords.len();
+    let complete = s
+        .face_uv
+        .iter()
+        .flatten()
+        .all(|&t| t != NO_UV && (t as usize) < n);
+    (complete && !s.face_uv.is_empty()).then(|| CornerUv {
+        texcoords: s.texcoords.clone(),
+        faces: s.face_uv.clone(),
+    })
 }
 
 /// A texture coordinate per vertex (`None` for a vertex no face uses).

@@ -60,6 +60,44 @@ pub(crate) fn encode_obj_with_uv(
     parts
 }
 
+/// `v` lines, the `vt` lines of a seamed map, and `f a/ta b/tb c/tc` lines (`uv_faces[f]`
+/// gives the `vt` of each corner of `faces[f]`), as parts to be written in order.
+pub(crate) fn encode_obj_with_corner_uv(
+    points: &[[f64; 3]],
+    texcoords: &[[f64; 2]],
+    faces: &[[u32; 3]],
+    uv_faces: &[[u32; 3]],
+) -> Vec<Vec<u8>> {
+    let header = format!(
+        "# conformap-io: {} vertices, {} faces, {} vt (one per corner class: f v/vt)\n",
+        points.len(),
+        faces.len(),
+        texcoords.len()
+    );
+    let mut parts = vec![header.into_bytes()];
+    parts.extend(blocks(points, 3 * 26, push_vertex));
+    parts.extend(blocks(texcoords, 2 * 26, |out, t| {
+        out.extend_from_slice(b"vt");
+        push_floats(out, t);
+    }));
+    let rows: Vec<([u32; 3], [u32; 3])> = faces
+        .iter()
+        .copied()
+        .zip(uv_faces.iter().copied())
+        .collect();
+    parts.extend(blocks(&rows, 3 * 18, |out, (f, t)| {
+        out.push(b'f');
+        for k in 0..3 {
+            out.push(b' ');
+            push_index(out, f[k]);
+            out.push(b'/');
+            push_index(out, t[k]);
+        }
+        out.push(b'\n');
+    }));
+    parts
+}
+
 /// Formats `rows` with `line`, in parallel blocks of [`BLOCK_ROWS`] when there are
 /// several; `guess` is the expected bytes per row (capacity only).
 fn blocks<T: Sync>(
