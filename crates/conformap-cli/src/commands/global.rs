@@ -104,10 +104,10 @@ impl MapCommand for GlobalArgs {
             )));
         }
         let map = global_map(mesh, &self.options()).map_err(|e| input.fail(e.into()))?;
-        let written = Written::new(mesh, &map)?;
+        let mut written = Written::new(mesh, &map)?;
         let t = std::time::Instant::now();
         let base = corner_map_metrics(
-            &written.mesh,
+            written.refined.as_ref().unwrap_or(mesh),
             &written.corner_values(),
             &MetricsOptions::DEFAULT,
         )?;
@@ -175,8 +175,11 @@ impl MapCommand for GlobalArgs {
         let tm = &map.timings_ms;
         Ok(Solved {
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
+            flat: (
+                std::mem::take(&mut written.flat_points),
+                Some(std::mem::take(&mut written.flat_faces)),
+            ),
             uv: written.tex_coords(),
-            flat: (written.flat_points, Some(written.flat_faces)),
             solver,
             param: None,
             sections,
@@ -246,10 +249,9 @@ fn global_section(map: &GlobalMap, zeros: &[serde_json::Value], w: &Written) -> 
 
 /// What `-o` and `--flat` receive.
 struct Written {
-    /// The mesh written to `-o`: the input, or its refinement when the double covering
-    /// split boundary chords.
-    mesh: TriMesh,
-    refined: bool,
+    /// The mesh written to `-o` when it is not the input: its refinement, when the double
+    /// covering split boundary chords.
+    refined: Option<TriMesh>,
     uv: CornerUv,
     flat_points: Vec<[f64; 3]>,
     flat_faces: Vec<[u32; 3]>,
@@ -303,22 +305,23 @@ impl Written {
         let same = map.split_edges == 0
             && map.input_vertices == input.num_vertices()
             && surface_faces == input.faces();
-        let mesh = if same {
-            input.clone()
+        let refined = if same {
+            None
         } else {
-            TriMesh::try_new(
-                map.surface.positions()[..map.input_vertices].to_vec(),
-                surface_faces.to_vec(),
+            Some(
+                TriMesh::try_new(
+                    map.surface.positions()[..map.input_vertices].to_vec(),
+                    surface_faces.to_vec(),
+                )
+                .map_err(|e| {
+                    Failure::Numerical(format!(
+                        "the refined input copy of the double covering is not a valid mesh: {e}"
+                    ))
+                })?,
             )
-            .map_err(|e| {
-                Failure::Numerical(format!(
-                    "the refined input copy of the double covering is not a valid mesh: {e}"
-                ))
-            })?
         };
         Ok(Self {
-            mesh,
-            refined: !same,
+            refined,
             uv: CornerUv {
                 texcoords,
                 faces: flat_faces.clone(),
@@ -341,14 +344,10 @@ impl Written {
             .collect()
     }
 
-    fn tex_coords(&self) -> TexCoords {
-        if self.refined {
-            TexCoords::Refined {
-                mesh: self.mesh.clone(),
-                uv: self.uv.clone(),
-            }
-        } else {
-            TexCoords::PerCorner(self.uv.clone())
+    fn tex_coords(self) -> TexCoords {
+        match self.refined {
+            Some(mesh) => TexCoords::Refined { mesh, uv: self.uv },
+            None => TexCoords::PerCorner(self.uv),
         }
     }
 }
