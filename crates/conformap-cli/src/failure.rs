@@ -183,6 +183,17 @@ impl From<conformap_disk::DiskError> for Failure {
                 };
                 Self::BadInput(e.to_string(), Some(hint))
             }
+            E::NotGenusZero { .. } => Self::BadInput(
+                e.to_string(),
+                Some(
+                    "`conformap info MESH` shows the topology; a disk map needs genus 0 and \
+                     at least one boundary loop (`conformap global` maps surfaces with \
+                     handles)"
+                        .to_string(),
+                ),
+            ),
+            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
+            E::Fill(_) => Self::BadInput(e.to_string(), None),
             other => Self::Numerical(other.to_string()),
         }
     }
@@ -211,28 +222,6 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairErro
             )
         }
         other => Failure::input(format!("{}: {other}", raw.source.path.display())),
-    }
-}
-
-impl From<conformap_disk::KoebeError> for Failure {
-    /// The Koebe method's failures: the mesh's topology is bad input (1), a bad `--outer`
-    /// or option a usage error (2), the rest numerical (3).
-    fn from(e: conformap_disk::KoebeError) -> Self {
-        use conformap_disk::KoebeError as E;
-        match e {
-            E::NotGenusZero { .. } => Self::BadInput(
-                e.to_string(),
-                Some(
-                    "`conformap info MESH` shows the topology; a disk map needs genus 0 and \
-                     at least one boundary loop"
-                        .to_string(),
-                ),
-            ),
-            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
-            E::Fill(_) => Self::BadInput(e.to_string(), None),
-            E::Disk(d) => Self::from(d),
-            other => Self::Numerical(other.to_string()),
-        }
     }
 }
 

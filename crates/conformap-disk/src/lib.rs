@@ -61,7 +61,7 @@ pub use cem::{cem, interior_residual, CemOptions};
 pub use error::DiskError;
 pub use harmonic::harmonic_arc_length;
 pub use koebe::{
-    koebe, CircleDomainMap, KoebeError, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
+    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
     LoopCircleFit, PolishReport,
 };
 pub use laplacian_choice::{

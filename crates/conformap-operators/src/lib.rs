@@ -22,6 +22,7 @@
 //! ```
 
 mod cholesky;
+mod circle;
 mod geometry;
 mod intrinsic;
 mod laplacian;
@@ -33,6 +34,7 @@ pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
     DenseModifiedLblt, FactorStats, InverseGram, Ordering, SymbolicAnalysis,
 };
+pub use circle::{circle_residual, fit_circle, Circle, FIT_REFINE_STEPS};
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
     triangle_cotangents,

@@ -3,122 +3,8 @@
 
 use std::f64::consts::TAU;
 
+pub(crate) use conformap_operators::{circle_residual, fit_circle, Circle};
 use num_complex::Complex64;
-
-/// Gauss–Newton refinement steps of [`fit_circle`] at most (a handful suffice on
-/// near-circles; the cap only guards a non-convergent refinement).
-const FIT_REFINE_STEPS: usize = 20;
-
-/// A circle in the plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Circle {
-    pub center: Complex64,
-    pub radius: f64,
-}
-
-/// The least-squares circle through `pts`: the algebraic (Kåsa) fit on centred and scaled
-/// points, refined by Gauss–Newton on the geometric distances `Σ (|z − c| − r)²`, accepting
-/// only steps that lower it. Exact (to rounding) for points on a circle. Collinear or
-/// coincident points fall back to the centroid and the mean distance to it.
-pub(crate) fn fit_circle(pts: &[Complex64]) -> Circle {
-    let n = pts.len().max(1) as f64;
-    let mean = pts.iter().sum::<Complex64>() / n;
-    let scale = (pts.iter().map(|z| (z - mean).norm_sqr()).sum::<f64>() / n).sqrt();
-    if !(scale > 0.0 && scale.is_finite()) {
-        return Circle {
-            center: mean,
-            radius: 0.0,
-        };
-    }
-    let x: Vec<Complex64> = pts.iter().map(|z| (z - mean) / scale).collect();
-    let (mut sxx, mut sxy, mut syy, mut sxq, mut syq) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for z in &x {
-        let q = z.norm_sqr();
-        sxx += z.re * z.re;
-        sxy += z.re * z.im;
-        syy += z.im * z.im;
-        sxq += z.re * q;
-        syq += z.im * q;
-    }
-    let det = sxx * syy - sxy * sxy;
-    let (mut c, mut r) = if det > 1e-12 * n * n {
-        let d = -(syy * sxq - sxy * syq) / det;
-        let e = -(sxx * syq - sxy * sxq) / det;
-        let c = Complex64::new(-0.5 * d, -0.5 * e);
-        (c, (c.norm_sqr() + 1.0).sqrt())
-    } else {
-        (
-            Complex64::new(0.0, 0.0),
-            x.iter().map(|z| z.norm()).sum::<f64>() / n,
-        )
-    };
-    let cost = |c: Complex64, r: f64| x.iter().map(|z| ((z - c).norm() - r).powi(2)).sum::<f64>();
-    let mut current = cost(c, r);
-    for _ in 0..FIT_REFINE_STEPS {
-        let mut jtj = [[0.0; 3]; 3];
-        let mut jtr = [0.0; 3];
-        for z in &x {
-            let w = z - c;
-            let d = w.norm();
-            if !(d > 0.0) {
-                continue;
-            }
-            let row = [-w.re / d, -w.im / d, -1.0];
-            for i in 0..3 {
-                jtr[i] += row[i] * (d - r);
-                for j in 0..3 {
-                    jtj[i][j] += row[i] * row[j];
-                }
-            }
-        }
-        let Some(step) = solve3(jtj, [-jtr[0], -jtr[1], -jtr[2]]) else {
-            break;
-        };
-        let (c2, r2) = (c + Complex64::new(step[0], step[1]), r + step[2]);
-        let trial = cost(c2, r2);
-        if !(trial < current && r2 > 0.0) {
-            break;
-        }
-        (c, r, current) = (c2, r2, trial);
-    }
-    Circle {
-        center: mean + c * scale,
-        radius: r * scale,
-    }
-}
-
-/// Cramer's rule for a 3×3 system; `None` when (numerically) singular.
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    let det3 = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let det = det3(a);
-    let scale = a.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
-    if !(det.abs() > 1e-14 * scale * scale * scale) {
-        return None;
-    }
-    let mut out = [0.0; 3];
-    for (k, o) in out.iter_mut().enumerate() {
-        let mut m = a;
-        for i in 0..3 {
-            m[i][k] = b[i];
-        }
-        *o = det3(m) / det;
-    }
-    Some(out)
-}
-
-/// `max ||z − c| − r| / r` over `pts`; 1 for a circle of radius 0 (a collapsed loop).
-pub(crate) fn relative_residual(pts: &[Complex64], circle: Circle) -> f64 {
-    if !(circle.radius > 0.0) {
-        return 1.0;
-    }
-    pts.iter()
-        .map(|z| ((z - circle.center).norm() - circle.radius).abs() / circle.radius)
-        .fold(0.0, f64::max)
-}
 
 /// The winding number of the closed polygon `pts` around `p` (rounded total turning / 2π).
 pub(crate) fn winding(pts: &[Complex64], p: Complex64) -> i64 {
@@ -323,7 +209,7 @@ mod tests {
         let fit = fit_circle(&pts);
         assert!((fit.center - c).norm() < 1e-14);
         assert!((fit.radius - 0.25).abs() < 1e-14);
-        assert!(relative_residual(&pts, fit) < 1e-13);
+        assert!(circle_residual(&pts, fit) < 1e-13);
         assert_eq!(winding(&pts, c), -1);
         assert_eq!(winding(&pts, Complex64::new(2.0, 0.0)), 0);
         let p = inner_point(&pts, -1).expect("inside");
@@ -364,7 +250,7 @@ mod tests {
             .collect();
         let fit = fit_circle(&images);
         assert!(fit.center.norm() < 1e-13, "{}", fit.center);
-        assert!(relative_residual(&images, fit) < 1e-12);
+        assert!(circle_residual(&images, fit) < 1e-12);
         // the unit circle stays the unit circle
         let z = disk_automorphism(Complex64::from_polar(1.0, 0.7), p);
         assert!((z.norm() - 1.0).abs() < 1e-15);

@@ -9,7 +9,7 @@ mod report;
 mod step;
 mod step_newton;
 
-pub use options::{KoebeError, KoebeOptions};
+pub use options::KoebeOptions;
 pub use report::{
     CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
 };
@@ -20,13 +20,13 @@ use conformap_mesh::{fill_all_holes_except, Topology, TriMesh};
 use num_complex::Complex64;
 
 use crate::koebe::circle_fit::{
-    arc_length_angles, concentric_point, disk_automorphism, fit_circle, inner_point,
-    relative_residual, unwrapped_angles, Circle,
+    arc_length_angles, circle_residual, concentric_point, disk_automorphism, fit_circle,
+    inner_point, unwrapped_angles, Circle,
 };
 use crate::koebe::polish::polish;
 use crate::koebe::step::{LoopSystem, StepSolve};
 use crate::koebe::step_newton::NewtonOptions;
-use crate::{cem, DiskProblem};
+use crate::{cem, DiskError, DiskProblem};
 
 /// The conformal map of a genus-0 mesh with several boundary loops onto the unit disk with
 /// circular holes: Koebe's iteration (CEM §3.3, Algorithm 2), then the circle-domain map of
@@ -70,10 +70,10 @@ use crate::{cem, DiskProblem};
 /// A mesh with one boundary loop is a disk: the first map alone.
 ///
 /// # Errors
-/// [`KoebeError::NotGenusZero`] unless the mesh is connected, genus 0, with boundary;
-/// [`KoebeError::OuterLoopOutOfRange`]; [`KoebeError::InvalidOption`];
-/// [`KoebeError::Fill`], [`KoebeError::Disk`] from the first map;
-/// [`KoebeError::Operator`], [`KoebeError::LoopNotSimple`], [`KoebeError::NonFinite`]
+/// [`DiskError::NotGenusZero`] unless the mesh is connected, genus 0, with boundary;
+/// [`DiskError::OuterLoopOutOfRange`]; [`DiskError::InvalidOption`];
+/// [`DiskError::Fill`]; the first map's own [`DiskError`]s;
+/// [`DiskError::Operator`], [`DiskError::LoopNotSimple`], [`DiskError::NonFinite`]
 /// when a planar step breaks down with the polish off, or the polish's factorization fails.
 ///
 /// # Examples
@@ -118,17 +118,17 @@ use crate::{cem, DiskProblem};
 /// assert!((modulus - 2f64.ln()).abs() < 1e-9, "{modulus}");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn koebe(mesh: &TriMesh, options: &KoebeOptions) -> Result<CircleDomainMap, KoebeError> {
+pub fn koebe(mesh: &TriMesh, options: &KoebeOptions) -> Result<CircleDomainMap, DiskError> {
     options.validate()?;
     let t_all = Instant::now();
     let found = mesh.topology();
     if !matches!(found, Topology::Disk | Topology::MultiplyConnected { .. }) {
-        return Err(KoebeError::NotGenusZero { found });
+        return Err(DiskError::NotGenusZero { found });
     }
     let loops = mesh.boundary_loops();
     let outer = match options.outer {
         Some(index) if index >= loops.len() => {
-            return Err(KoebeError::OuterLoopOutOfRange {
+            return Err(DiskError::OuterLoopOutOfRange {
                 index,
                 loops: loops.len(),
             })
@@ -215,7 +215,7 @@ fn sweeps(
     options: &KoebeOptions,
     newton: &NewtonOptions,
     report: &mut KoebeReport,
-) -> Result<(bool, Option<Vec<Complex64>>), KoebeError> {
+) -> Result<(bool, Option<Vec<Complex64>>), DiskError> {
     let n = mesh.num_vertices();
     let loops = mesh.boundary_loops();
     let mut systems: Vec<Option<LoopSystem>> = (0..loops.len()).map(|_| None).collect();
@@ -287,13 +287,13 @@ fn planar_step(
     z: &[Complex64],
     newton: &NewtonOptions,
     sweep: usize,
-) -> Result<StepSolve, KoebeError> {
+) -> Result<StepSolve, DiskError> {
     let loops = mesh.boundary_loops();
     let k = system.open;
     let at = |values: &[Complex64], l: usize| -> Vec<Complex64> {
         loops[l].iter().map(|&v| values[v as usize]).collect()
     };
-    let not_simple = |loop_index| KoebeError::LoopNotSimple { loop_index, sweep };
+    let not_simple = |loop_index| DiskError::LoopNotSimple { loop_index, sweep };
     let c = inner_point(&at(z, k), -1).ok_or_else(|| not_simple(k))?;
     let mut w: Vec<Complex64> = z.iter().map(|&x| 1.0 / (x - c)).collect();
     // the loop's own best-fit circle becomes (about) the unit circle: when the loop is a
@@ -339,7 +339,7 @@ fn fits(mesh: &TriMesh, z: &[Complex64]) -> Vec<(Circle, f64)> {
         .map(|lp| {
             let pts: Vec<Complex64> = lp.iter().map(|&v| z[v as usize]).collect();
             let fit = fit_circle(&pts);
-            (fit, relative_residual(&pts, fit))
+            (fit, circle_residual(&pts, fit))
         })
         .collect()
 }

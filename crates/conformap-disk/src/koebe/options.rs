@@ -1,8 +1,5 @@
 //! Options and errors of [`crate::koebe`], each option with its default and why.
 
-use conformap_mesh::{MeshError, Topology};
-use conformap_operators::OperatorError;
-
 use crate::{CemOptions, DiskError};
 
 /// Options of [`crate::koebe`].
@@ -106,10 +103,10 @@ impl KoebeOptions {
     /// `newton_step_tol > 0` and finite.
     ///
     /// # Errors
-    /// [`KoebeError::InvalidOption`] naming the option.
-    pub fn validate(&self) -> Result<(), KoebeError> {
+    /// [`DiskError::InvalidOption`] naming the option.
+    pub fn validate(&self) -> Result<(), DiskError> {
         let bad = |name: &'static str, reason: &'static str| {
-            Err(KoebeError::InvalidOption { name, reason })
+            Err(DiskError::InvalidOption { name, reason })
         };
         if !(self.tol >= 0.0 && self.tol.is_finite()) {
             return bad("tol", "must be a finite number ≥ 0");
@@ -131,73 +128,4 @@ impl Default for KoebeOptions {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-/// Why a disk-with-circular-holes map could not be computed.
-///
-/// (A separate enum from [`DiskError`], which it wraps, so that the Koebe method's own
-/// failures read in its own words.)
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum KoebeError {
-    /// The mesh is not a connected genus-0 surface with boundary, so no disk with circular
-    /// holes is conformally equivalent to it. Fix: closed genus-0 meshes map to the sphere;
-    /// higher-genus ones need cutting (or the global 1-form map); split several components.
-    #[error(
-        "a disk with circular holes needs a connected genus-0 surface with at least one \
-         boundary loop, but the mesh is {found}"
-    )]
-    NotGenusZero {
-        /// What the mesh is.
-        found: Topology,
-    },
-    /// The requested outer loop does not exist. Fix: loops are numbered from 0 in the order
-    /// of `conformap info` (by smallest vertex).
-    #[error("outer loop {index} does not exist: the mesh has {loops} boundary loops")]
-    OuterLoopOutOfRange {
-        /// The requested loop.
-        index: usize,
-        /// Number of loops.
-        loops: usize,
-    },
-    /// An option is out of range. Fix: see the option's documentation.
-    #[error("invalid option {name}: {reason}")]
-    InvalidOption {
-        /// The option.
-        name: &'static str,
-        /// What is required.
-        reason: &'static str,
-    },
-    /// Filling the holes of the input surface with centroid fans gave an invalid mesh (a
-    /// fan triangle is degenerate: a flat loop whose centroid lies on one of its edges).
-    #[error("filling the holes failed: {0}")]
-    Fill(#[from] MeshError),
-    /// The first disk map (CEM on the filled surface) failed.
-    #[error("the first disk map failed: {0}")]
-    Disk(#[from] DiskError),
-    /// A sparse factorization of a Koebe step failed (e.g. `L_II` of a folded planar image
-    /// is not positive definite).
-    #[error("linear algebra of a Koebe step failed: {0}")]
-    Operator(#[from] OperatorError),
-    /// No point inside a hole's current image was found to invert about: the loop's image
-    /// is not a simple polygon (the previous map folded it).
-    #[error(
-        "the image of boundary loop {loop_index} is not a simple closed curve (sweep {sweep}); \
-         the previous map folded it"
-    )]
-    LoopNotSimple {
-        /// The loop.
-        loop_index: usize,
-        /// The sweep (0 = the first disk map).
-        sweep: usize,
-    },
-    /// A non-finite value appeared at this vertex: the planar image has (numerically)
-    /// degenerate triangles, crowded below what f64 resolves.
-    #[error("the map became non-finite at vertex {vertex} ({stage})")]
-    NonFinite {
-        /// 0-based vertex index (of the filled mesh).
-        vertex: usize,
-        /// Which step produced it.
-        stage: &'static str,
-    },
 }

@@ -9,8 +9,9 @@ use conformap_mesh::TriMesh;
 use conformap_operators::{cotan_laplacian, Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 
+use crate::error::DiskError;
 use crate::koebe::circle_fit::fit_circle;
-use crate::koebe::options::{KoebeError, KoebeOptions};
+use crate::koebe::options::KoebeOptions;
 use crate::koebe::polish_newton::{minimize_circles, CircleProblem, CircleState, LoopSpec};
 use crate::koebe::report::PolishReport;
 use crate::koebe::step::dense_schur;
@@ -28,7 +29,7 @@ pub(crate) fn polish(
     outer: usize,
     reference: Option<usize>,
     options: &KoebeOptions,
-) -> Result<(Vec<Complex64>, PolishReport), KoebeError> {
+) -> Result<(Vec<Complex64>, PolishReport), DiskError> {
     let t0 = Instant::now();
     let loops = mesh.boundary_loops();
     // the mesh's own weights: the energy minimized is the one the metrics judge
@@ -65,7 +66,7 @@ pub(crate) fn polish(
     let map = partition.assemble(&fi, &fb);
     let flipped = crate::laplacian_choice::count_flipped(mesh, &map).0;
     if let Some(v) = map.iter().position(|z| !z.is_finite()) {
-        return Err(KoebeError::NonFinite {
+        return Err(DiskError::NonFinite {
             vertex: v,
             stage: "interior of the circle-domain polish",
         });

@@ -14,7 +14,7 @@ use conformap_operators::{Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 use sprs::CsMat;
 
-use crate::koebe::options::KoebeError;
+use crate::error::DiskError;
 use crate::koebe::step_newton::{minimize, NewtonOptions, NewtonResult};
 
 /// Columns per blocked solve when forming the Schur complement: `64`, enough for the
@@ -126,7 +126,7 @@ impl LoopSystem {
     /// semidefinite and `L_II` positive definite even where an early, far-from-circular
     /// step leaves a folded image face or a fan centre outside a non-convex hole; once the
     /// holes are round and nothing is folded, signed and unsigned agree.
-    fn laplacian(&self, w: &[Complex64]) -> Result<CsMat<f64>, KoebeError> {
+    fn laplacian(&self, w: &[Complex64]) -> Result<CsMat<f64>, DiskError> {
         let mut data = vec![0.0; self.indices.len()];
         for (t, slots) in self.planar_faces.iter().zip(&self.face_slots) {
             let p = t.map(|v| w[v as usize]);
@@ -135,7 +135,7 @@ impl LoopSystem {
                 let v = p[(k + 2) % 3] - p[k];
                 let cot = (u.re * v.re + u.im * v.im) / (u.re * v.im - u.im * v.re).abs();
                 if !cot.is_finite() {
-                    return Err(KoebeError::NonFinite {
+                    return Err(DiskError::NonFinite {
                         vertex: t[k] as usize,
                         stage: "planar cotangent weights of a Koebe step",
                     });
@@ -165,7 +165,7 @@ impl LoopSystem {
         w: &[Complex64],
         theta0: Vec<f64>,
         newton: &NewtonOptions,
-    ) -> Result<StepSolve, KoebeError> {
+    ) -> Result<StepSolve, DiskError> {
         let t0 = Instant::now();
         let l = self.laplacian(w)?;
         let blocks = LaplacianBlocks::new(&l, &self.partition);
@@ -208,7 +208,7 @@ impl LoopSystem {
         let fi = factor.solve_complex(&rhs);
         let map = self.partition.assemble(&fi, &fb);
         if let Some(v) = map.iter().position(|z| !z.is_finite()) {
-            return Err(KoebeError::NonFinite {
+            return Err(DiskError::NonFinite {
                 vertex: v,
                 stage: "harmonic extension of a Koebe step",
             });
