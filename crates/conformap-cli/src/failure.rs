@@ -201,13 +201,11 @@ impl From<conformap_disk::DiskError> for Failure {
 
 /// The failure for a mesh [`conformap_mesh::repair`] could not repair, naming the file
 /// place of the element (the repair reports input numbering).
-pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairError) -> Failure {
-    use conformap_mesh::{MeshError, RepairError};
+pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::MeshError) -> Failure {
+    use conformap_mesh::MeshError;
     match e {
-        RepairError::Invalid(inner) => raw.invalid_mesh(inner).into(),
-        RepairError::NonOrientable { face, other, a, b } => {
-            let at = MeshError::InconsistentOrientation { face, other, a, b };
-            let place = match raw.origin_of(&at) {
+        MeshError::NonOrientable { .. } => {
+            let place = match raw.origin_of(&e) {
                 Some(conformap_io::Origin::Line(l)) => format!(":{l}"),
                 Some(o) => format!(" ({o})"),
                 None => String::new(),
@@ -221,7 +219,7 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairErro
                 ),
             )
         }
-        other => Failure::input(format!("{}: {other}", raw.source.path.display())),
+        other => raw.invalid_mesh(other).into(),
     }
 }
 

@@ -394,7 +394,8 @@ pub(crate) fn mesh_error_element(error: &MeshError) -> Option<Element> {
         | MeshError::RepeatedVertexInFace { face, .. }
         | MeshError::ZeroAreaFace { face, .. }
         | MeshError::DuplicateFace { face, .. }
-        | MeshError::InconsistentOrientation { face, .. } => Some(Element::Face(*face)),
+        | MeshError::InconsistentOrientation { face, .. }
+        | MeshError::NonOrientable { face, .. } => Some(Element::Face(*face)),
         MeshError::NonManifoldEdge { faces, .. } => {
             faces.get(2).or(faces.first()).map(|&f| Element::Face(f))
         }

@@ -31,7 +31,7 @@ mod trimesh;
 
 pub use error::MeshError;
 pub use holes::{centroid_fan_faces, fill_all_holes_except};
-pub use repair::{repair, RepairError, RepairLog, RepairOptions, Repaired, DROPPED};
+pub use repair::{repair, RepairLog, RepairOptions, Repaired, DROPPED};
 pub use surgery::{fill_holes, FilledMesh};
 #[doc(hidden)]
 pub use topology::doc_torus;

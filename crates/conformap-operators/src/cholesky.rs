@@ -241,7 +241,7 @@ impl Cholesky {
     ///
     /// # Errors
     /// [`OperatorError::NotPositiveDefinite`] with the failing pivot, or
-    /// [`OperatorError::Factorization`] if faer runs out of memory.
+    /// [`OperatorError::OutOfMemory`] if faer runs out of memory.
     ///
     /// # Examples
     /// ```
@@ -282,7 +282,7 @@ impl Cholesky {
     ///
     /// # Errors
     /// [`OperatorError::NotSquareCsc`], [`OperatorError::BadPermutation`] for an invalid
-    /// custom ordering, [`OperatorError::Factorization`] if faer's analysis fails.
+    /// custom ordering, [`OperatorError::OutOfMemory`] or [`OperatorError::IndexOverflow`] if faer's analysis fails.
     pub fn analyse_with(
         a: &CsMat<f64>,
         options: &CholeskyOptions,
@@ -330,7 +330,7 @@ impl Cholesky {
                 ..Default::default()
             },
         )
-        .map_err(|e| OperatorError::Factorization(format!("{e:?}")))?;
+        .map_err(|e| OperatorError::from_faer(e, "the symbolic analysis"))?;
         let analyse_ms = t0.elapsed().as_secs_f64() * 1e3;
         let chol = Self {
             values: Vec::new(),
@@ -367,13 +367,16 @@ impl Cholesky {
         self.values.clear();
         self.values
             .try_reserve_exact(len)
-            .map_err(|_| OperatorError::Factorization("out of memory for the factor".into()))?;
+            .map_err(|_| OperatorError::OutOfMemory {
+                what: "the Cholesky factor",
+            })?;
         self.values.resize(len, 0.0);
         let scratch = self
             .symbolic
             .factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
-        let mut mem = MemBuffer::try_new(scratch)
-            .map_err(|_| OperatorError::Factorization("out of memory for the workspace".into()))?;
+        let mut mem = MemBuffer::try_new(scratch).map_err(|_| OperatorError::OutOfMemory {
+            what: "the workspace",
+        })?;
         self.symbolic
             .factorize_numeric_llt::<f64>(
                 &mut self.values,
@@ -549,8 +552,8 @@ impl DenseCholesky {
             let scratch = faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<f64>(
                 n, par, params,
             );
-            let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
-                OperatorError::Factorization("out of memory for the workspace".into())
+            let mut mem = MemBuffer::try_new(scratch).map_err(|_| OperatorError::OutOfMemory {
+                what: "the workspace",
             })?;
             faer::linalg::cholesky::llt::factor::cholesky_in_place(
                 l,
@@ -703,8 +706,8 @@ impl DenseModifiedLblt {
         if n > 0 {
             let params = Default::default();
             let scratch = bk::cholesky_in_place_scratch::<usize, f64>(n, par, params);
-            let mut mem = MemBuffer::try_new(scratch).map_err(|_| {
-                OperatorError::Factorization("out of memory for the workspace".into())
+            let mut mem = MemBuffer::try_new(scratch).map_err(|_| OperatorError::OutOfMemory {
+                what: "the workspace",
             })?;
             let m = MatMut::from_column_major_slice_mut(&mut a, n, n);
             let sub = faer::ColMut::from_slice_mut(&mut subdiag).as_diagonal_mut();
