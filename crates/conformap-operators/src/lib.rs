@@ -30,6 +30,7 @@ mod laplacian;
 mod lu;
 mod mean_value;
 pub mod memory;
+mod quality;
 
 pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
@@ -51,3 +52,4 @@ pub use laplacian::{
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
 pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
+pub use quality::{mesh_quality, MeshQuality};

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use conformap_io::RawMesh;
 use conformap_mesh::{repair, RepairOptions, TriMesh};
-use conformap_operators::{corner_angles, cotan_laplacian, surface_area};
+use conformap_operators::{mesh_quality, surface_area};
 use serde_json::json;
 
 use std::fmt::Write;
@@ -68,22 +68,7 @@ pub fn run(args: &InfoArgs) -> Result<Outcome, Failure> {
 pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
     let loops: Vec<usize> = mesh.boundary_loops().iter().map(Vec::len).collect();
     let wc = mesh.well_conditioned();
-    let l = cotan_laplacian(mesh);
-    // an edge's weight is −L_ij; count edges (upper triangle) with negative weight
-    let mut negative = 0usize;
-    for (j, col) in l.outer_iterator().enumerate() {
-        for (i, &v) in col.iter() {
-            if i < j && v > 0.0 {
-                negative += 1;
-            }
-        }
-    }
-    let angles = corner_angles(mesh);
-    let (mut amin, mut amax) = (f64::INFINITY, 0.0f64);
-    for a in angles.iter().flatten() {
-        amin = amin.min(*a);
-        amax = amax.max(*a);
-    }
+    let q = mesh_quality(mesh);
     json!({
         "path": path.display().to_string(),
         "valid": true,
@@ -98,10 +83,10 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
         "topology": mesh.topology().to_string(),
         "bbox_diagonal": mesh.bbox_diagonal(),
         "surface_area": surface_area(mesh),
-        "angle_min_deg": amin.to_degrees(),
-        "angle_max_deg": amax.to_degrees(),
-        "negative_cotan_edges": negative,
-        "negative_cotan_edge_fraction": negative as f64 / mesh.num_edges() as f64,
+        "angle_min_deg": q.angle_min_deg,
+        "angle_max_deg": q.angle_max_deg,
+        "negative_cotan_edges": q.negative_cotan_edges,
+        "negative_cotan_edge_fraction": q.negative_cotan_edge_fraction,
         "well_conditioned": {
             "holds": wc.holds(),
             "connected": wc.connected,
