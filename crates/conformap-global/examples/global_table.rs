@@ -12,9 +12,8 @@
 use std::time::Instant;
 
 use conformap_global::{
-    double_cover_disk_map, optimize_disk_mobius, optimize_sphere_mobius,
-    planar_cross_ratio_distortion, sphere_map, sphere_metrics, DiskAutomorphism, MobiusObjective,
-    MobiusOptions, SphereOptions,
+    double_cover_disk_map, optimize_disk_mobius, optimize_sphere_mobius, sphere_map,
+    sphere_metrics, DiskAutomorphism, MobiusObjective, MobiusOptions, SphereOptions,
 };
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use num_complex::Complex64;
@@ -135,8 +134,8 @@ fn disk_table(names: &[String]) -> Res {
         let t_mob = t.elapsed().as_secs_f64();
         let a = planar_map_metrics(&mesh, &cem.map, &MetricsOptions::default())?;
         let b = planar_map_metrics(&mesh, &best.map, &MetricsOptions::default())?;
-        let ca = planar_cross_ratio_distortion(&mesh, &cem.map)?;
-        let cb = planar_cross_ratio_distortion(&mesh, &best.map)?;
+        let ca = conformap_metrics::cross_ratio_distortion(&mesh, &cem.map)?;
+        let cb = conformap_metrics::cross_ratio_distortion(&mesh, &best.map)?;
         println!(
             "| {name} | {} | {:.4e} → {:.4e} | {:.3} | {:.3} → {:.3} | {:.6} / {:.6} | {} / {} | {:.2} s |",
             mesh.num_vertices(),

@@ -77,8 +77,7 @@ pub use forms::{
     LayoutMetrics, Zero, ZeroReport, MODULUS_MAX_STEPS,
 };
 pub use metrics::{
-    planar_cross_ratio_distortion, sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics,
-    SPHERE_BELTRAMI_CAP,
+    sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,
 };
 pub use mobius::{
     boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,

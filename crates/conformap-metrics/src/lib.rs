@@ -43,6 +43,7 @@
 //! ```
 
 mod circles;
+mod cross_ratio;
 mod energy;
 mod error;
 mod face;
@@ -51,17 +52,21 @@ mod options;
 mod per_face;
 mod report;
 mod stats;
+mod summary;
 
+pub use cross_ratio::{cross_ratio_distortion, cross_ratio_logs};
 pub use energy::{conformal_energy, dirichlet_energy, image_area};
 pub use error::{MetricsError, MAP_ABS_LIMIT};
 pub use face::BELTRAMI_ABS_CAP;
 pub use metrics::{corner_map_metrics, planar_map_metrics};
 pub use options::{MetricsOptions, OuterCircle};
 pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
-pub use report::{
-    AngleDistortion, AreaDistortion, BeltramiStats, Histogram, LoopCircle, MapMetrics,
-};
+pub use report::{Histogram, LoopCircle, MapMetrics};
 pub use stats::ANGLE_HISTOGRAM_EDGES_DEG;
+pub use summary::{
+    abs_log_stats, angle_stats, log_ratio_stats, summary_stats, AbsLogStats, AngleStats,
+    LogRatioStats, SummaryStats,
+};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -9,10 +9,9 @@ use crate::energy::{corners, face_dirichlet, image_area_unchecked, twice_signed_
 use crate::error::{check_map, MetricsError};
 use crate::face::{image_angles, Chart};
 use crate::options::{MetricsOptions, OuterCircle};
-use crate::report::{
-    AngleDistortion, AreaDistortion, BeltramiStats, Histogram, LoopCircle, MapMetrics,
-};
+use crate::report::{Histogram, LoopCircle, MapMetrics};
 use crate::stats::{angle_bin, p95, Running, ANGLE_HISTOGRAM_EDGES_DEG};
+use crate::summary::{AngleStats, LogRatioStats, SummaryStats};
 
 /// Whether twice the signed area of an image face marks it degenerate: exactly zero or not
 /// finite. Tiny areas (1e-20 and below) are *not* degenerate: conformal maps crowd
@@ -243,18 +242,18 @@ fn face_passes(
         conformal_energy: dirichlet - image_area,
         dirichlet_energy: dirichlet,
         image_area,
-        angle_distortion_deg: AngleDistortion {
+        angle_distortion_deg: AngleStats {
             mean: angle.mean(),
             sd: angle.sd(),
             max: angle.max(),
             p95: p95(&mut corner_distortion),
         },
-        beltrami_abs: BeltramiStats {
+        beltrami_abs: SummaryStats {
             mean: beltrami.mean(),
             sd: beltrami.sd(),
             max: beltrami.max(),
         },
-        area_distortion_log: AreaDistortion {
+        area_distortion_log: LogRatioStats {
             mean_abs: area_abs.mean(),
             sd: area.sd(),
         },

@@ -7,11 +7,11 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use conformap_global::{
     equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
-    planar_cross_ratio_distortion, sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport,
-    EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL,
+    sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
+    MAP_RADIUS_TOL,
 };
 use conformap_mesh::TriMesh;
-use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
 
 use crate::commands::param::{read_map_file, read_region, MapFile};
@@ -221,8 +221,9 @@ impl MobiusArgs {
         let before = planar_map_metrics(mesh, &map, &MetricsOptions::default())
             .map_err(|e| Failure::input(format!("{}: {e}", self.param.display())))?;
         let after = planar_map_metrics(mesh, &best.map, &MetricsOptions::default())?;
-        let cr_before = planar_cross_ratio_distortion(mesh, &map).map_err(|e| self.fail(e))?;
-        let cr_after = planar_cross_ratio_distortion(mesh, &best.map).map_err(|e| self.fail(e))?;
+        // the map was checked by planar_map_metrics above
+        let cr_before = cross_ratio_distortion(mesh, &map)?;
+        let cr_after = cross_ratio_distortion(mesh, &best.map)?;
         let metrics = MetricsSection::planar(after)
             .with("uniformity_energy", best.report.uniformity_after)
             .with("uniformity_energy_before", best.report.uniformity_before)
