@@ -45,17 +45,9 @@
 //! ```
 
 mod double_cover;
-mod energy;
 mod error;
 mod forms;
-mod metrics;
 mod mobius;
-mod mobius_options;
-mod newton;
-mod objective;
-mod optimize;
-mod report;
-mod source;
 mod sphere;
 mod stats;
 mod stereo;
@@ -67,35 +59,35 @@ pub use double_cover::{
     double_cover, double_cover_disk_map, double_cover_surface, DoubleCover, DoubleCoverDisk,
     DoubleCoverReport,
 };
-pub use energy::{
-    disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
-    sphere_uniformity_energy, surface_shares,
-};
 pub use error::GlobalError;
 pub use forms::{
     global_map, reduce_modulus, ConjugateMethod, GlobalMap, GlobalMapOptions, GlobalTimings,
     LayoutMetrics, Zero, ZeroReport, MODULUS_MAX_STEPS,
 };
-pub use metrics::{
-    sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,
+pub use mobius::energy::{
+    disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
+    sphere_uniformity_energy, surface_shares,
 };
-pub use mobius::{
+pub use mobius::maps::{
     boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,
 };
-pub use mobius_options::{
-    MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL, MOBIUS_MAX_BOOST,
-    MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
-};
-pub use optimize::{
+pub use mobius::optimize::{
     optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusReport, SphereMobius,
     StartRecord,
 };
-pub use report::{SphereReport, StageRecord, Timings};
-pub use source::sphere_source_face;
-pub use sphere::{
+pub use mobius::options::{
+    MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL, MOBIUS_MAX_BOOST,
+    MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
+};
+pub use sphere::map::{
     sphere_map, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION, SPHERE_MAX_CORRECTIONS,
     SPHERE_MIN_GAIN, SPHERE_SOLVE_RESIDUAL_TOL,
 };
+pub use sphere::metrics::{
+    sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,
+};
+pub use sphere::report::{SphereReport, StageRecord, Timings};
+pub use sphere::source::sphere_source_face;
 pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
 pub use stereo::{
     equirectangular_uv, from_equirectangular_uv, inverse_stereographic,

@@ -25,17 +25,17 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::energy::{
+use crate::mobius::energy::{
     check_len, planar_face_areas, planar_signed_area, region_mask, region_share_from_areas,
     sphere_face_areas, surface_shares, uniformity_from_areas,
 };
-use crate::mobius::{DiskAutomorphism, Mobius, MobiusCoefficients};
+use crate::mobius::maps::{DiskAutomorphism, Mobius, MobiusCoefficients};
+use crate::mobius::newton::{minimize, EvalFn, NewtonSettings};
+use crate::mobius::objective::{DiskProblemM, SphereProblem, Target};
 #[allow(unused_imports)] // the module docs link to EMPHASIZE_MAX_AREA_SCALE
-use crate::mobius_options::{
+use crate::mobius::options::{
     MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL,
 };
-use crate::newton::{minimize, EvalFn, NewtonSettings};
-use crate::objective::{DiskProblemM, SphereProblem, Target};
 use crate::stereo::{norm, normalize};
 use crate::GlobalError;
 

@@ -5,7 +5,7 @@
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::mobius::{half_tanh_ratio, half_tanh_ratio_dt_over_t};
+use crate::mobius::maps::{half_tanh_ratio, half_tanh_ratio_dt_over_t};
 use crate::stereo::{cross, norm, sub};
 
 /// Faces per rayon task: large enough that scheduling costs nothing next to the work
@@ -223,7 +223,7 @@ impl DiskProblemM<'_> {
             .iter()
             .map(|f| {
                 let p = f.map(|k| y[k as usize]);
-                crate::energy::planar_signed_area(p)
+                crate::mobius::energy::planar_signed_area(p)
             })
             .collect();
         let areas: Vec<f64> = signed.iter().map(|a| a.abs()).collect();
@@ -261,7 +261,7 @@ mod tests {
     use super::*;
     use crate::stereo::normalize;
 
-    fn fd_check(eval: &crate::newton::EvalFn<'_>, x: &[f64]) {
+    fn fd_check(eval: &crate::mobius::newton::EvalFn<'_>, x: &[f64]) {
         let (_, g) = eval(x);
         for j in 0..x.len() {
             let h = 1e-6;
@@ -283,7 +283,7 @@ mod tests {
     fn sphere_gradients_match_finite_differences() {
         let mesh = crate::doc_support::octahedron_sphere(2);
         let pts: Vec<[f64; 3]> = mesh.positions().iter().map(|p| normalize(*p)).collect();
-        let shares = crate::energy::surface_shares(&mesh);
+        let shares = crate::mobius::energy::surface_shares(&mesh);
         let mask: Vec<bool> = (0..mesh.num_faces()).map(|f| f % 3 == 0).collect();
         let prob = SphereProblem {
             points: &pts,
@@ -312,7 +312,7 @@ mod tests {
             .iter()
             .map(|p| Complex64::new(p[0], 0.7 * p[1]))
             .collect();
-        let shares = crate::energy::surface_shares(&mesh);
+        let shares = crate::mobius::energy::surface_shares(&mesh);
         let mask: Vec<bool> = (0..mesh.num_faces()).map(|f| f % 2 == 0).collect();
         let prob = DiskProblemM {
             map: &map,

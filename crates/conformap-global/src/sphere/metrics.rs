@@ -6,7 +6,7 @@ use conformap_operators::{face_areas, face_points, triangle_angles};
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::energy::{check_len, chord_area, surface_shares, uniformity_from_areas};
+use crate::mobius::energy::{check_len, chord_area, surface_shares, uniformity_from_areas};
 use crate::stats::{
     abs_log_stats, angle_stats, log_ratio_stats, summary, AbsLogStats, AngleStats, LogRatioStats,
     SummaryStats,

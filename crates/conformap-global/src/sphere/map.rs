@@ -13,8 +13,8 @@ use conformap_operators::{
 use num_complex::Complex64;
 use sprs::CsMat;
 
-use crate::report::{SphereReport, StageRecord, Timings};
-use crate::source::{farthest_vertex, sphere_source_face};
+use crate::sphere::report::{SphereReport, StageRecord, Timings};
+use crate::sphere::source::{farthest_vertex, sphere_source_face};
 use crate::stereo::{
     det3, inverse_stereographic, inverse_stereographic_south, normalize, stereographic,
     stereographic_south,

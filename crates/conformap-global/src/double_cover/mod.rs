@@ -9,9 +9,9 @@ use conformap_mesh::{Topology, TriMesh};
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::mobius::boost_sphere_point;
-use crate::source::{centre_vertex, regular_face_around};
-use crate::sphere::{sphere_map, SphereOptions};
+use crate::mobius::maps::boost_sphere_point;
+use crate::sphere::map::{sphere_map, SphereOptions};
+use crate::sphere::source::{centre_vertex, regular_face_around};
 use crate::stereo::{cross, dot, normalize};
 use crate::{GlobalError, SphereReport};
 
