@@ -62,7 +62,7 @@ pub use double_cover::{
 pub use error::GlobalError;
 pub use forms::{
     global_map, reduce_modulus, ConjugateMethod, GlobalMap, GlobalMapOptions, GlobalTimings,
-    LayoutMetrics, Zero, ZeroReport, MODULUS_MAX_STEPS,
+    LayoutMetrics, SeamedLayout, Zero, ZeroReport, MODULUS_MAX_STEPS,
 };
 pub use mobius::energy::{
     disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,

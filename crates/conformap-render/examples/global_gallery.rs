@@ -47,14 +47,9 @@ fn main() -> Result<()> {
             .map(|c| [c[0], c[1], c[2]])
             .collect();
         let coords = MapCoords::Planar(UvValues::PerCorner(&corners));
-        let shown = if map.split_edges == 0 && map.input_faces == mesh.num_faces() {
-            mesh.clone()
-        } else {
-            conformap_mesh::TriMesh::try_new(
-                map.surface.positions()[..map.input_vertices].to_vec(),
-                map.surface.faces()[..map.input_faces].to_vec(),
-            )?
-        };
+        // the input, or its refinement when the double covering split boundary chords
+        let refined = map.seamed_layout(&mesh)?.mesh;
+        let shown = refined.as_ref().unwrap_or(&mesh);
         let base = RenderOptions::DEFAULT.with_size(800);
         for (what, options) in [
             ("global_surface", base),
@@ -63,7 +58,7 @@ fn main() -> Result<()> {
                 base.with_view(View::Map).with_color(ColorBy::Angle),
             ),
         ] {
-            let image = render(&shown, &coords, &options)?;
+            let image = render(shown, &coords, &options)?;
             let file = out.join(format!("{name}_{what}.png"));
             image.save_png(&file)?;
             println!("  {}", file.display());

@@ -9,12 +9,11 @@
 //! surface cut open along the seams) with the raw layout as `(u, v, 0)`.
 
 use clap::{Args, ValueEnum};
-use conformap_global::{global_map, ConjugateMethod, GlobalMap, GlobalMapOptions};
+use conformap_global::{global_map, ConjugateMethod, GlobalMap, GlobalMapOptions, SeamedLayout};
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
 use conformap_metrics::{corner_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
-use num_complex::Complex64;
 use serde_json::json;
 
 use crate::failure::Failure;
@@ -103,22 +102,16 @@ impl MapCommand for GlobalArgs {
                 mesh.num_vertices()
             )));
         }
-        let map = global_map(mesh, &self.options()).map_err(|e| input.fail(e.into()))?;
-        let mut written = Written::new(mesh, &map)?;
+        let fail = |e: conformap_global::GlobalError| input.fail(e.into());
+        let map = global_map(mesh, &self.options()).map_err(fail)?;
+        let seamed = map.seamed_layout(mesh).map_err(fail)?;
         let t = std::time::Instant::now();
-        let base = corner_map_metrics(
-            written.refined.as_ref().unwrap_or(mesh),
-            &written.corner_values(),
-            &MetricsOptions::DEFAULT,
-        )?;
+        let written = seamed.mesh.as_ref().unwrap_or(mesh);
+        let base = corner_map_metrics(written, &seamed.corner_values(), &MetricsOptions::DEFAULT)?;
         let metrics_ms = map.timings_ms.metrics + crate::report::ms_since(t);
         let (folds_at_zeros, folds_outside_zeros) = map.input_folds();
-        let zeros: Vec<_> = map
-            .input_zeros()
-            .map(|z| json!({"vertex": z.vertex, "multiplicity": z.multiplicity}))
-            .collect();
-        let (cf_min, cf_max) = map.conformal_factor_range();
         let m = &map.metrics;
+        let (cf_min, cf_max) = map.conformal_factor_range();
         let metrics = MetricsSection::planar(base)
             .with("angle_distortion_all_corners_deg", m.angle_distortion_deg)
             .with(
@@ -129,9 +122,8 @@ impl MapCommand for GlobalArgs {
             .with("folds_at_zeros", folds_at_zeros)
             .with("folds_outside_zeros", folds_outside_zeros)
             .with("conformal_factor_range", [cf_min, cf_max]);
-        let global = global_section(&map, &zeros, &written);
         let mut sections = serde_json::Map::new();
-        sections.insert("global".to_string(), global);
+        sections.insert("global".to_string(), global_section(&map, &seamed));
         sections.insert(
             "factorization".to_string(),
             json!({"dim": map.factor_dim, "nnz_factor": map.factor_nnz}),
@@ -143,43 +135,18 @@ impl MapCommand for GlobalArgs {
             )
             .with("seam_residual", map.seam_residual)
             .with("harmonic_residual", map.harmonic_residual);
-        let tau = map
-            .tau
-            .map(|t| format!(", τ = {:.6}{:+.6}i", t.re, t.im))
-            .unwrap_or_default();
-        let summary = format!(
-            "{} vertices, {} faces, genus {}{}; form {} of {}{tau}; {} zero(s), folds {} at \
-             zeros / {} elsewhere; mean angle distortion {:.3}° away from zeros, uniformity \
-             {:.3e}",
-            mesh.num_vertices(),
-            mesh.num_faces(),
-            map.genus,
-            if map.double_covered {
-                format!(
-                    " with {} boundary loop(s) (double covering of genus {})",
-                    map.boundaries, map.surface_genus
-                )
-            } else {
-                String::new()
-            },
-            map.form_index,
-            2 * map.surface_genus,
-            zeros.len(),
-            folds_at_zeros,
-            folds_outside_zeros,
-            m.angle_distortion_away_from_zeros_deg.mean,
-            m.uniformity_energy,
-        );
-        let strict_violation = (folds_outside_zeros > 0)
-            .then(|| format!("{folds_outside_zeros} folded faces lie outside the zeros' clusters"));
         let tm = &map.timings_ms;
         Ok(Solved {
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
+            summary: summary(mesh, &map, folds_at_zeros, folds_outside_zeros),
+            strict_violation: (folds_outside_zeros > 0).then(|| {
+                format!("{folds_outside_zeros} folded faces lie outside the zeros' clusters")
+            }),
             flat: (
-                std::mem::take(&mut written.flat_points),
-                Some(std::mem::take(&mut written.flat_faces)),
+                seamed.layout.iter().map(|z| [z.re, z.im, 0.0]).collect(),
+                Some(seamed.tex_faces.clone()),
             ),
-            uv: written.tex_coords(),
+            uv: tex_coords(seamed),
             solver,
             param: None,
             sections,
@@ -191,8 +158,6 @@ impl MapCommand for GlobalArgs {
                 metrics: metrics_ms,
                 ..StageTimings::default()
             },
-            strict_violation,
-            summary,
         })
     }
 }
@@ -204,8 +169,50 @@ fn conjugate_name(c: ConjugateMethod) -> &'static str {
     }
 }
 
+/// What `-o` receives: the input's faces with per-corner texture coordinates, on the input
+/// or on its refinement.
+fn tex_coords(seamed: SeamedLayout) -> TexCoords {
+    let uv = CornerUv {
+        texcoords: seamed.texcoords,
+        faces: seamed.tex_faces,
+    };
+    match seamed.mesh {
+        Some(mesh) => TexCoords::Refined { mesh, uv },
+        None => TexCoords::PerCorner(uv),
+    }
+}
+
+/// The summary line.
+fn summary(mesh: &TriMesh, map: &GlobalMap, at_zeros: usize, outside: usize) -> String {
+    let tau = map
+        .tau
+        .map(|t| format!(", τ = {:.6}{:+.6}i", t.re, t.im))
+        .unwrap_or_default();
+    let cover = if map.double_covered {
+        format!(
+            " with {} boundary loop(s) (double covering of genus {})",
+            map.boundaries, map.surface_genus
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{} vertices, {} faces, genus {}{cover}; form {} of {}{tau}; {} zero(s), folds {at_zeros} \
+         at zeros / {outside} elsewhere; mean angle distortion {:.3}° away from zeros, \
+         uniformity {:.3e}",
+        mesh.num_vertices(),
+        mesh.num_faces(),
+        map.genus,
+        map.form_index,
+        2 * map.surface_genus,
+        map.input_zeros().count(),
+        map.metrics.angle_distortion_away_from_zeros_deg.mean,
+        map.metrics.uniformity_energy,
+    )
+}
+
 /// The report's `global` section.
-fn global_section(map: &GlobalMap, zeros: &[serde_json::Value], w: &Written) -> serde_json::Value {
+fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> serde_json::Value {
     let n = 2 * map.surface_genus;
     let periods: Vec<Vec<[f64; 2]>> = (0..n)
         .map(|j| {
@@ -214,6 +221,10 @@ fn global_section(map: &GlobalMap, zeros: &[serde_json::Value], w: &Written) -> 
                 .map(|z| [z.re, z.im])
                 .collect()
         })
+        .collect();
+    let zeros: Vec<_> = map
+        .input_zeros()
+        .map(|z| json!({"vertex": z.vertex, "multiplicity": z.multiplicity}))
         .collect();
     json!({
         "genus": map.genus,
@@ -240,114 +251,9 @@ fn global_section(map: &GlobalMap, zeros: &[serde_json::Value], w: &Written) -> 
         "seam_edges": map.seam_edges,
         "seam_residual": map.seam_residual,
         "layout_diagonal": map.layout_diagonal,
-        "uv_offset": w.offset,
-        "uv_scale": w.scale,
+        "uv_offset": seamed.offset,
+        "uv_scale": seamed.scale,
         "uv_is": "vt = (layout − uv_offset) · uv_scale: the layout fitted into the unit square",
         "timings_ms": map.timings_ms,
     })
-}
-
-/// What `-o` and `--flat` receive.
-struct Written {
-    /// The mesh written to `-o` when it is not the input: its refinement, when the double
-    /// covering split boundary chords.
-    refined: Option<TriMesh>,
-    uv: CornerUv,
-    flat_points: Vec<[f64; 3]>,
-    flat_faces: Vec<[u32; 3]>,
-    offset: [f64; 2],
-    scale: f64,
-}
-
-impl Written {
-    fn new(input: &TriMesh, map: &GlobalMap) -> Result<Self, Failure> {
-        let nf = map.input_faces;
-        let cut_faces = &map.cut.mesh.faces()[..nf];
-        let corner = map.input_corner_uv();
-        // cut vertices of the input's faces, numbered by first use
-        let mut index = vec![u32::MAX; map.cut.mesh.num_vertices()];
-        let mut layout: Vec<Complex64> = Vec::new();
-        let flat_faces: Vec<[u32; 3]> = cut_faces
-            .iter()
-            .enumerate()
-            .map(|(f, t)| {
-                std::array::from_fn(|k| {
-                    let c = t[k] as usize;
-                    if index[c] == u32::MAX {
-                        index[c] = layout.len() as u32;
-                        layout.push(corner[3 * f + k]);
-                    }
-                    index[c]
-                })
-            })
-            .collect();
-        let (lo, hi) = layout.iter().fold(
-            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-            |(lo, hi), z| {
-                (
-                    [lo[0].min(z.re), lo[1].min(z.im)],
-                    [hi[0].max(z.re), hi[1].max(z.im)],
-                )
-            },
-        );
-        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if !(extent > 0.0 && extent.is_finite()) {
-            return Err(Failure::Numerical(format!(
-                "the layout has no extent ({extent}); the form degenerated"
-            )));
-        }
-        let scale = 1.0 / extent;
-        let texcoords = layout
-            .iter()
-            .map(|z| [(z.re - lo[0]) * scale, (z.im - lo[1]) * scale])
-            .collect();
-        let surface_faces = &map.surface.faces()[..nf];
-        let same = map.split_edges == 0
-            && map.input_vertices == input.num_vertices()
-            && surface_faces == input.faces();
-        let refined = if same {
-            None
-        } else {
-            Some(
-                TriMesh::try_new(
-                    map.surface.positions()[..map.input_vertices].to_vec(),
-                    surface_faces.to_vec(),
-                )
-                .map_err(|e| {
-                    Failure::Numerical(format!(
-                        "the refined input copy of the double covering is not a valid mesh: {e}"
-                    ))
-                })?,
-            )
-        };
-        Ok(Self {
-            refined,
-            uv: CornerUv {
-                texcoords,
-                faces: flat_faces.clone(),
-            },
-            flat_points: layout.iter().map(|z| [z.re, z.im, 0.0]).collect(),
-            flat_faces,
-            offset: lo,
-            scale,
-        })
-    }
-
-    /// The written texture coordinates per corner (`3 f + k`), as `metrics` reads them back.
-    fn corner_values(&self) -> Vec<Complex64> {
-        (0..self.uv.faces.len())
-            .flat_map(|f| (0..3).map(move |k| (f, k)))
-            .map(|(f, k)| {
-                let t = self.uv.corner(f, k);
-                Complex64::new(t[0], t[1])
-            })
-            .collect()
-    }
-
-    fn tex_coords(self) -> TexCoords {
-        match self.refined {
-            Some(mesh) => TexCoords::Refined { mesh, uv: self.uv },
-            None => TexCoords::PerCorner(self.uv),
-        }
-    }
 }

@@ -15,6 +15,8 @@
 //! - `quality.rs`: angle and area distortion, the scale-free uniformity energy
 //!   ([`LayoutMetrics`]).
 //! - `options.rs`, `global_map.rs`: the entry point [`global_map`] → [`GlobalMap`].
+//! - `seamed.rs`: [`SeamedLayout`], the layout as a file writes it (per-corner texture
+//!   coordinates in the unit square).
 
 mod cohomology;
 mod conjugate;
@@ -25,6 +27,7 @@ mod layout;
 mod options;
 mod periods;
 mod quality;
+mod seamed;
 mod zeros;
 
 #[cfg(test)]
@@ -35,4 +38,5 @@ pub use global_map::{global_map, GlobalMap, GlobalTimings};
 pub use options::GlobalMapOptions;
 pub use periods::{reduce_modulus, MODULUS_MAX_STEPS};
 pub use quality::LayoutMetrics;
+pub use seamed::SeamedLayout;
 pub use zeros::{Zero, ZeroReport};
