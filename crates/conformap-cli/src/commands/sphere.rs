@@ -6,7 +6,7 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use conformap_global::{
     equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
-    MobiusOptions, SphereOptions, SPHERE_SOLVE_RESIDUAL_TOL,
+    MobiusOptions, SphereMetrics, SphereOptions, SPHERE_SOLVE_RESIDUAL_TOL,
 };
 use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
@@ -122,34 +122,8 @@ impl MapCommand for SphereArgs {
         )
         .with("sphere", s)
         .with("mobius", &mobius);
-        let summary = format!(
-            "{} vertices, {} faces; sphere map with {} correction(s){}; mean angle \
-             distortion {:.3}°, inverted faces {}, uniformity energy {:.3e}",
-            mesh.num_vertices(),
-            mesh.num_faces(),
-            s.corrections,
-            if mobius.is_some() {
-                " and uniform Möbius normalization"
-            } else {
-                ""
-            },
-            after.angle_distortion_deg.mean,
-            after.flipped_faces,
-            after.uniformity_energy,
-        );
-        let strict_violation = if after.flipped_faces > 0 {
-            Some(format!(
-                "{} triangles are inverted on the sphere",
-                after.flipped_faces
-            ))
-        } else if !converged {
-            Some(format!(
-                "the sphere map did not converge (solve residual {:.1e})",
-                s.residual
-            ))
-        } else {
-            None
-        };
+        let summary = summary(mesh, s.corrections, mobius.is_some(), &after);
+        let strict_violation = strict_violation(&after, converged, s.residual);
         Ok(Solved {
             method,
             uv: points
@@ -172,5 +146,40 @@ impl MapCommand for SphereArgs {
             strict_violation,
             summary,
         })
+    }
+}
+
+/// The summary line of a sphere map.
+fn summary(mesh: &TriMesh, corrections: usize, mobius: bool, after: &SphereMetrics) -> String {
+    format!(
+        "{} vertices, {} faces; sphere map with {} correction(s){}; mean angle \
+         distortion {:.3}°, inverted faces {}, uniformity energy {:.3e}",
+        mesh.num_vertices(),
+        mesh.num_faces(),
+        corrections,
+        if mobius {
+            " and uniform Möbius normalization"
+        } else {
+            ""
+        },
+        after.angle_distortion_deg.mean,
+        after.flipped_faces,
+        after.uniformity_energy,
+    )
+}
+
+/// Why `--strict` refuses the map: inverted faces, or a solve that did not converge.
+fn strict_violation(after: &SphereMetrics, converged: bool, residual: f64) -> Option<String> {
+    if after.flipped_faces > 0 {
+        Some(format!(
+            "{} triangles are inverted on the sphere",
+            after.flipped_faces
+        ))
+    } else if !converged {
+        Some(format!(
+            "the sphere map did not converge (solve residual {residual:.1e})"
+        ))
+    } else {
+        None
     }
 }
