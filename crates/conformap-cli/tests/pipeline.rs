@@ -174,3 +174,58 @@ fn double_cover_is_a_disk_method() {
     assert!(r["solver"]["detail"].is_null(), "the solver object is flat");
     assert!(r["solver"]["cover_vertices"].as_u64().unwrap() > 4537);
 }
+
+#[test]
+fn the_default_method_falls_back_on_a_stretched_disk_and_strict_refuses_that() {
+    let d = tmpdir("pipeline-stretched");
+    // woody stretched 3× along x: valid, but CCEM's map would fold
+    let text = std::fs::read_to_string(fixture("woody.obj")).unwrap();
+    let mut out = String::new();
+    for line in text.lines() {
+        match line.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                out.push_str(&format!("v {} {} {}\n", 3.0 * c[0], c[1], c[2]));
+            }
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    let mesh = d.join("stretched.obj");
+    std::fs::write(&mesh, out).unwrap();
+    let (uv, rep) = (d.join("uv.obj"), d.join("r.json"));
+    let o = conformap(&["disk", s(&mesh), "-o", s(&uv), "--report", s(&rep)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("fallback: ccem-qn would fold"),
+        "{}",
+        stderr(&o)
+    );
+    let r = json(&rep);
+    assert_eq!(r["solver"]["fallback_from"], "ccem-qn");
+    assert_eq!(r["metrics"]["flipped_faces"], 0);
+    assert!(
+        r["method"] == "cem" || r["method"] == "harmonic",
+        "{}",
+        r["method"]
+    );
+    // --strict: the answer is not the method asked for
+    let (uv2, rep2) = (d.join("uv2.obj"), d.join("r2.json"));
+    let o = conformap(&[
+        "disk",
+        s(&mesh),
+        "-o",
+        s(&uv2),
+        "--report",
+        s(&rep2),
+        "--strict",
+    ]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("ccem-qn would fold"), "{}", stderr(&o));
+    assert!(!uv2.exists() && !rep2.exists());
+}

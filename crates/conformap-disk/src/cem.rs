@@ -173,6 +173,7 @@ pub fn cem(problem: &mut DiskProblem<'_>, options: &CemOptions) -> Result<DiskMa
         residual,
         factorizations: 2,
         notes,
+        fallback_from: None,
         timings_ms: crate::report::Timings {
             assemble: problem.assemble_ms,
             factor: problem.factor_ms + init.factor_ms,

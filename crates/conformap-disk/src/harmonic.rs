@@ -40,6 +40,7 @@ pub fn harmonic_arc_length(problem: &DiskProblem<'_>) -> DiskMap {
         residual: interior_residual(problem, &map),
         factorizations: 1,
         notes: vec!["boundary by arc length, no boundary optimization".to_string()],
+        fallback_from: None,
         timings_ms: Timings {
             assemble: problem.assemble_ms,
             factor: problem.factor_ms,

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 
-use crate::ccem::{CcemOptions, CcemVariant};
+use crate::ccem::{CcemOptions, CcemStart, CcemVariant};
 use crate::cem::interior_residual;
 use crate::{
     ccem, cem, harmonic_arc_length, unfold_disk_map, CemOptions, DiskError, DiskMap, DiskProblem,
@@ -172,9 +172,52 @@ pub fn run_disk_method(
             let mut o = options.ccem.with_variant(variant);
             o.max_iter = options.max_iter.unwrap_or(o.max_iter);
             o.tol = options.tol.unwrap_or(o.tol);
-            ccem(problem, &o)
+            if method == DiskMethod::Ccem && o.start == CcemOptions::DEFAULT.start {
+                // Algorithm 4.1 as Kuo et al. §6 run it: from the CEM map (steepest descent
+                // from the harmonic measure zigzags to the iteration cap on camelhead and
+                // human_face, above CEM's energy)
+                o.start = CcemStart::Cem(options.cem);
+            }
+            match ccem(problem, &o) {
+                Err(e @ DiskError::Folded { .. }) if !options.keep_folds => {
+                    fall_back(problem, method, options, &e).ok_or(e)
+                }
+                other => other,
+            }
         }
     }
+}
+
+/// When CCEM would fold (negative cotangent weights fold its harmonic interior, or its
+/// boundary crowds below what f64 resolves), the flip-free CEM and harmonic maps (each
+/// through [`unfold_disk_map`]) of lower conformal energy, with a note and
+/// [`SolverReport::fallback_from`] saying so; `None` when neither maps the mesh either.
+/// The default method never refuses a disk a simpler method maps.
+fn fall_back(
+    problem: &mut DiskProblem<'_>,
+    method: DiskMethod,
+    options: &DiskOptions,
+    why: &DiskError,
+) -> Option<DiskMap> {
+    let simpler = [DiskMethod::Cem, DiskMethod::Harmonic]
+        .into_iter()
+        .filter_map(|m| run_disk_method(problem, m, options).ok());
+    let mut best = simpler.min_by(|a, b| {
+        let (ea, eb) = (
+            a.report.energy_history[a.report.best_iteration],
+            b.report.energy_history[b.report.best_iteration],
+        );
+        ea.total_cmp(&eb)
+    })?;
+    let r = &mut best.report;
+    r.notes.push(format!(
+        "{} refused ({why}); returned the {} map, the flip-free one of lower E_C of cem and \
+         harmonic",
+        method.name(),
+        r.method
+    ));
+    r.fallback_from = Some(method.name().to_string());
+    Some(best)
 }
 
 /// `out` passed through [`unfold_disk_map`] unless [`DiskOptions::keep_folds`]: a map that

@@ -45,6 +45,10 @@ pub struct SolverReport {
     pub factorizations: usize,
     /// Things the user should know about this run (e.g. an orientation fix).
     pub notes: Vec<String>,
+    /// The method asked for, when it could not map the mesh flip-free and [`Self::method`]
+    /// is the simpler method that did (see [`crate::run_disk_method`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fallback_from: Option<String>,
     /// Per-stage timings.
     pub timings_ms: Timings,
     /// Euclidean norm of the projected gradient of `E_C(θ)` (CCEM Eq. 4.1, with the

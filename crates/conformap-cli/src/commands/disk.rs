@@ -211,7 +211,10 @@ impl DiskArgs {
              distortion {:.3}°, flipped faces {}",
             mesh.num_vertices(),
             mesh.num_faces(),
-            method.name(),
+            match &s.fallback_from {
+                Some(asked) => format!("{} (fallback: {asked} would fold)", s.method),
+                None => s.method.clone(),
+            },
             s.iterations,
             if s.converged { " (converged)" } else { "" },
             metrics.conformal_energy,
@@ -228,7 +231,7 @@ impl DiskArgs {
             }),
         );
         Ok(Solved {
-            method: method.name().to_string(),
+            method: s.method.clone(),
             uv: disk_uv(&result.map).into(),
             flat: (planar_points(&result.map), None),
             solver: SolverSection::new(
@@ -249,13 +252,18 @@ impl DiskArgs {
                 metrics: ms_since(t),
                 ..StageTimings::default()
             },
-            strict_violation: (!s.converged).then(|| {
-                format!(
-                    "{} did not converge in {} iterations",
-                    method.name(),
-                    s.iterations
-                )
-            }),
+            strict_violation: match &s.fallback_from {
+                Some(asked) => Some(format!(
+                    "{asked} would fold; the {} map was returned",
+                    s.method
+                )),
+                None => (!s.converged).then(|| {
+                    format!(
+                        "{} did not converge in {} iterations",
+                        s.method, s.iterations
+                    )
+                }),
+            },
             summary,
         })
     }

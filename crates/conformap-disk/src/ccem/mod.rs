@@ -435,6 +435,7 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
         residual,
         factorizations,
         notes,
+        fallback_from: None,
         timings_ms: Timings {
             assemble: problem.assemble_ms,
             factor: problem.factor_ms + start.extra_factor_ms,
