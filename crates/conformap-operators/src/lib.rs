@@ -52,4 +52,4 @@ pub use laplacian::{
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
 pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
-pub use quality::{mesh_quality, MeshQuality};
+pub use quality::{mesh_quality, MeshQuality, FOLD_NORMAL_COS};

@@ -19,7 +19,16 @@ pub struct MeshQuality {
     pub negative_cotan_edges: usize,
     /// [`Self::negative_cotan_edges`] over all edges.
     pub negative_cotan_edge_fraction: f64,
+    /// Interior edges whose two faces' normals are nearly opposite (cosine below
+    /// [`FOLD_NORMAL_COS`]): a geometric fold, such as a scan's folded sliver. A valid mesh
+    /// may have them; maps of it need the flip-free guards.
+    pub folded_edges: usize,
 }
+
+/// Cosine of the angle between adjacent face normals below which [`mesh_quality`] counts a
+/// fold: −0.9, normals more than 154° apart (a crease folded back on itself; the sharpest
+/// real features of the shared meshes stay above it).
+pub const FOLD_NORMAL_COS: f64 = -0.9;
 
 /// The [`MeshQuality`] of `mesh`: one pass over the faces and one over the cotangent
 /// Laplacian's upper triangle.
@@ -52,12 +61,36 @@ pub fn mesh_quality(mesh: &TriMesh) -> MeshQuality {
         .enumerate()
         .map(|(j, col)| col.iter().filter(|&(i, &v)| i < j && v > 0.0).count())
         .sum::<usize>();
+    let normal = |f: usize| {
+        let p = face_points(mesh, f);
+        let (u, v) = (sub(p[1], p[0]), sub(p[2], p[0]));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let r = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        n.map(|x| x / r)
+    };
+    let opp = mesh.opposite_halfedges();
+    let folded_edges = (0..opp.len())
+        .filter(|&h| opp[h] != conformap_mesh::NO_HALFEDGE && (h as u32) < opp[h])
+        .filter(|&h| {
+            let (a, b) = (normal(h / 3), normal(opp[h] as usize / 3));
+            a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < FOLD_NORMAL_COS
+        })
+        .count();
     MeshQuality {
+        folded_edges,
         angle_min_deg: amin.to_degrees(),
         angle_max_deg: amax.to_degrees(),
         negative_cotan_edges: negative,
         negative_cotan_edge_fraction: negative as f64 / mesh.num_edges().max(1) as f64,
     }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[cfg(test)]
@@ -84,5 +117,18 @@ mod tests {
         assert!((q.negative_cotan_edge_fraction - 0.2).abs() < 1e-15);
         let apex = 180.0 - 2.0 * 0.5f64.atan().to_degrees();
         assert!((q.angle_max_deg - apex).abs() < 1e-9, "{}", q.angle_max_deg);
+        assert_eq!(q.folded_edges, 0);
+        // fold the second triangle back over the first: its apex above the first one
+        let folded = TriMesh::try_new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [1.0, 0.5, 0.0],
+                [1.0, 0.4, 0.05],
+            ],
+            vec![[0, 1, 2], [1, 0, 3]],
+        )
+        .expect("valid");
+        assert_eq!(mesh_quality(&folded).folded_edges, 1);
     }
 }

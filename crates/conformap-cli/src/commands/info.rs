@@ -87,6 +87,7 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
         "angle_max_deg": q.angle_max_deg,
         "negative_cotan_edges": q.negative_cotan_edges,
         "negative_cotan_edge_fraction": q.negative_cotan_edge_fraction,
+        "folded_edges": q.folded_edges,
         "well_conditioned": {
             "holds": wc.holds(),
             "connected": wc.connected,
@@ -177,6 +178,13 @@ fn text(v: &serde_json::Value) -> String {
         g("negative_cotan_edges"),
         100.0 * g("negative_cotan_edge_fraction").as_f64().unwrap_or(0.0)
     ));
+    if g("folded_edges").as_u64().unwrap_or(0) > 0 {
+        say(&format!(
+            "geometric folds (adjacent normals more than 154° apart): {} edges; the maps' \
+             flip-free guards handle them, a remesh removes them",
+            g("folded_edges")
+        ));
+    }
     say(&format!(
         "CEM well-conditioned (Definition 1): {}",
         v["well_conditioned"]["holds"]

@@ -8,13 +8,15 @@ use std::time::Instant;
 use conformap_disk::initial::angenent_rhs;
 use conformap_mesh::{Topology, TriMesh};
 use conformap_operators::{
-    cotan_laplacian, relative_residual, triangle_angles, Cholesky, LaplacianBlocks, Partition,
+    cotan_laplacian, intrinsic_delaunay_laplacian, relative_residual, triangle_angles, Cholesky,
+    LaplacianBlocks, Partition,
 };
 use num_complex::Complex64;
 use sprs::CsMat;
 
 use crate::sphere::report::{SphereReport, StageRecord, Timings};
 use crate::sphere::source::{farthest_vertex, sphere_source_face};
+use crate::sphere::untangle::{inverted_faces, untangle};
 use crate::stereo::{
     det3, inverse_stereographic, inverse_stereographic_south, normalize, stereographic,
     stereographic_south,
@@ -167,11 +169,84 @@ pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, 
         });
     }
     check_options(mesh, options)?;
-    let n = mesh.num_vertices();
-    let mut timings = Timings::default();
     let t = Instant::now();
     let l = cotan_laplacian(mesh);
-    timings.assemble = ms(t);
+    let first = solve_with(mesh, &l, options, ms(t), t_all)?;
+    let flips = first.report.stages[first.report.best_stage].flipped_faces;
+    if flips == 0 {
+        return Ok(first);
+    }
+    // the guard: a face inverted (a folded sliver of a scan, strongly negative cotangent
+    // weights); the intrinsic Delaunay Laplacian has no negative weight
+    let t = Instant::now();
+    let (idl, stats) = intrinsic_delaunay_laplacian(mesh)?;
+    let second = solve_with(mesh, &idl, options, ms(t), Instant::now())?;
+    let (f1, f2) = (
+        first.report.stages[first.report.best_stage].flipped_faces,
+        second.report.stages[second.report.best_stage].flipped_faces,
+    );
+    // candidates: both maps, each as solved and locally untangled with the intrinsic
+    // Delaunay weights and with Tutte's uniform weights; the fewest inverted faces win,
+    // then the lowest mean angle distortion
+    let angles = mesh_corner_angles(mesh);
+    let mut best: Option<GuardCandidate> = None;
+    for (is_second, map) in [(false, &first), (true, &second)] {
+        for how in [None, Some(false), Some(true)] {
+            let mut p = map.points.clone();
+            let left = match how {
+                None => inverted_faces(mesh, &p).len(),
+                Some(uniform) => untangle(mesh, &idl, uniform, &mut p),
+            };
+            let d = stage_record(mesh, &angles, &p, "guard").mean_angle_distortion_deg;
+            if best.as_ref().is_none_or(|b| (left, d) < (b.0, b.1)) {
+                let label = format!(
+                    "{}{}",
+                    if is_second {
+                        "intrinsic Delaunay"
+                    } else {
+                        "cotangent"
+                    },
+                    match how {
+                        None => "",
+                        Some(false) => " + untangled",
+                        Some(true) => " + untangled (uniform weights)",
+                    }
+                );
+                best = Some((left, d, label, p, is_second));
+            }
+        }
+    }
+    let Some((left, _, label, points, is_second)) = best else {
+        return Ok(first);
+    };
+    let mut out = if is_second { second } else { first };
+    out.points = points;
+    out.report.guard = Some(format!(
+        "the cotangent Laplacian's map inverted {f1} faces, the intrinsic Delaunay \
+         Laplacian's ({} edge flips) {f2}; kept the {label} map: {left} inverted faces",
+        stats.flips,
+    ));
+    out.report.timings_ms.total = ms(t_all);
+    Ok(out)
+}
+
+/// A candidate of the flip-free guard: inverted faces, mean angle distortion, its name, its
+/// points, whether it is the intrinsic Delaunay map.
+type GuardCandidate = (usize, f64, String, Vec<[f64; 3]>, bool);
+
+/// Steps 1–3 of [`sphere_map`] with the Laplacian `l` (assembled in `assemble_ms`).
+fn solve_with(
+    mesh: &TriMesh,
+    l: &CsMat<f64>,
+    options: &SphereOptions,
+    assemble_ms: f64,
+    t_all: Instant,
+) -> Result<SphereMap, GlobalError> {
+    let n = mesh.num_vertices();
+    let mut timings = Timings {
+        assemble: assemble_ms,
+        ..Timings::default()
+    };
 
     let source = match options.source_face {
         Some(f) => f,
@@ -181,7 +256,7 @@ pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, 
     // 1. Angenent's map
     let t = Instant::now();
     let part = Partition::new(n, &[pinned as u32]);
-    let blocks = LaplacianBlocks::new(&l, &part);
+    let blocks = LaplacianBlocks::new(l, &part);
     timings.assemble += ms(t);
     let t = Instant::now();
     let factor = Cholesky::factor(&blocks.ii)?;
@@ -216,7 +291,7 @@ pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, 
     let mut factorizations = 1;
     for k in 0..options.max_corrections {
         let from_south = k % 2 == 0;
-        let (next, nfixed, fms) = correct(&l, &best_points, options.fixed_fraction, from_south)?;
+        let (next, nfixed, fms) = correct(l, &best_points, options.fixed_fraction, from_south)?;
         factorizations += 1;
         timings.factor += fms;
         fixed_vertices = nfixed;
@@ -255,6 +330,7 @@ pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, 
         factorizations,
         residual,
         timings_ms: timings,
+        guard: None,
     };
     Ok(SphereMap {
         points: best_points,

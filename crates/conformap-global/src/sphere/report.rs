@@ -55,4 +55,8 @@ pub struct SphereReport {
     pub residual: f64,
     /// Timings.
     pub timings_ms: Timings,
+    /// What the flip-free guard did, when the cotangent Laplacian's map inverted a face
+    /// (`None`: it did not, and nothing was re-solved).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub guard: Option<String>,
 }
