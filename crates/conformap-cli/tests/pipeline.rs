@@ -229,3 +229,71 @@ fn the_default_method_falls_back_on_a_stretched_disk_and_strict_refuses_that() {
     assert!(stderr(&o).contains("ccem-qn would fold"), "{}", stderr(&o));
     assert!(!uv2.exists() && !rep2.exists());
 }
+
+#[test]
+fn an_obj_triangle_soup_is_welded_by_repair_as_gltf_is_on_reading() {
+    let d = tmpdir("pipeline-soup");
+    // woody as a triangle soup: every face with its own three vertices
+    let text = std::fs::read_to_string(fixture("woody.obj")).unwrap();
+    let mut v: Vec<&str> = Vec::new();
+    let mut soup = String::new();
+    let mut faces = String::new();
+    let mut n = 0;
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("v ") {
+            v.push(rest);
+        } else if let Some(rest) = line.strip_prefix("f ") {
+            for idx in rest.split_whitespace() {
+                let i: usize = idx.split('/').next().unwrap().parse().unwrap();
+                soup.push_str(&format!("v {}\n", v[i - 1]));
+            }
+            faces.push_str(&format!("f {} {} {}\n", n + 1, n + 2, n + 3));
+            n += 3;
+        }
+    }
+    let mesh = d.join("soup.obj");
+    std::fs::write(&mesh, soup + &faces).unwrap();
+    // info says so; a plain disk map refuses the many components
+    let o = conformap(&["info", s(&mesh)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(out.contains("coincident vertices"), "{out}");
+    let uv = d.join("uv.obj");
+    let o = conformap(&["disk", s(&mesh), "-o", s(&uv)]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!uv.exists());
+    // --repair welds, then maps the same surface as woody's
+    let rep = d.join("r.json");
+    let o = conformap(&[
+        "disk",
+        s(&mesh),
+        "--repair",
+        "-o",
+        s(&uv),
+        "--report",
+        s(&rep),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("coincident vertices welded"),
+        "{}",
+        stderr(&o)
+    );
+    let r = json(&rep);
+    assert_eq!(r["input"]["vertices"], 694);
+    let (wuv, wrep) = (d.join("w.obj"), d.join("w.json"));
+    let o = conformap(&[
+        "disk",
+        s(&fixture("woody.obj")),
+        "-o",
+        s(&wuv),
+        "--report",
+        s(&wrep),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (a, b) = (
+        r["metrics"]["conformal_energy"].as_f64().unwrap(),
+        json(&wrep)["metrics"]["conformal_energy"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-9 * b, "{a} vs {b}");
+}

@@ -113,6 +113,9 @@ pub struct RepairLog {
     pub component_vertices_dropped: usize,
     /// Faces flipped to agree with their neighbours.
     pub flipped_faces: usize,
+    /// Vertices merged into an earlier one at a bit-identical position before the repairs
+    /// (an OBJ triangle soup or seam-split export; set by the caller that welded, 0 here).
+    pub coincident_welded: usize,
     /// Vertices of the input that no face uses, dropped.
     pub unreferenced_vertices: usize,
     /// For each repaired vertex, the input vertex it is (`vt` index `k` of an output belongs
@@ -140,6 +143,14 @@ impl RepairLog {
         let plural =
             |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
         let mut out = Vec::new();
+        if self.coincident_welded > 0 {
+            let what = plural(
+                self.coincident_welded,
+                "coincident vertex",
+                "coincident vertices",
+            );
+            out.push(format!("{what} welded into an earlier one"));
+        }
         if self.duplicate_faces > 0 {
             let what = plural(self.duplicate_faces, "duplicate face", "duplicate faces");
             out.push(format!("{what} dropped"));
@@ -370,6 +381,7 @@ pub fn repair(
             },
             flipped_faces,
             unreferenced_vertices: if dropped { unreferenced_vertices } else { 0 },
+            coincident_welded: 0,
             vertex_to_input,
             input_to_vertex,
             face_to_input,

@@ -88,6 +88,7 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
         "negative_cotan_edges": q.negative_cotan_edges,
         "negative_cotan_edge_fraction": q.negative_cotan_edge_fraction,
         "folded_edges": q.folded_edges,
+        "coincident_vertices": conformap_io::coincident_vertices(mesh.positions()),
         "well_conditioned": {
             "holds": wc.holds(),
             "connected": wc.connected,
@@ -101,27 +102,25 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
 
 /// One line saying what `--repair` would do to `raw` and whether the result would be valid.
 fn repair_preview(raw: &RawMesh) -> String {
+    // the repairs as `--repair` runs them (the OBJ weld included), on a copy
     match repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT) {
         Err(e) => format!("--repair cannot fix it: {}", repair_failure(raw, e)),
-        Ok(r) => {
-            let actions = r.log.actions();
-            let what = if actions.is_empty() {
-                "nothing to repair".to_string()
-            } else {
-                actions.join("; ")
-            };
-            match TriMesh::try_new(r.positions, r.faces) {
-                Ok(m) => format!(
+        Ok(_) => match repair_input(raw.clone()) {
+            Ok(input) => {
+                let actions = input.repairs.map(|l| l.actions()).unwrap_or_default();
+                let what = if actions.is_empty() {
+                    "nothing to repair".to_string()
+                } else {
+                    actions.join("; ")
+                };
+                format!(
                     "with --repair: {what}; the result is valid, {} (`conformap info \
                      --repair` describes it)",
-                    m.topology()
-                ),
-                Err(e) => format!(
-                    "with --repair: {what}; the result is still invalid: {}",
-                    raw.invalid_mesh(r.log.to_input_error(e))
-                ),
+                    input.mesh.topology()
+                )
             }
-        }
+            Err(f) => format!("with --repair: the result is still invalid: {f}"),
+        },
     }
 }
 
@@ -178,6 +177,13 @@ fn text(v: &serde_json::Value) -> String {
         g("negative_cotan_edges"),
         100.0 * g("negative_cotan_edge_fraction").as_f64().unwrap_or(0.0)
     ));
+    if g("coincident_vertices").as_u64().unwrap_or(0) > 0 {
+        say(&format!(
+            "coincident vertices: {} (bit-identical positions not shared by faces; --repair \
+             welds them, as the glTF reader does)",
+            g("coincident_vertices")
+        ));
+    }
     if g("folded_edges").as_u64().unwrap_or(0) > 0 {
         say(&format!(
             "geometric folds (adjacent normals more than 154° apart): {} edges; the maps' \

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use conformap_io::{RawMesh, SourceInfo};
+use conformap_io::{Format, RawMesh, SourceInfo};
 use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
 
 use crate::failure::{repair_failure, Failure};
@@ -53,8 +53,42 @@ pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
 /// Applies every repair of [`conformap_mesh::repair`] to `raw` and validates the result;
 /// errors name input elements and their file places.
 pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
-    let fixed = conformap_mesh::repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT)
-        .map_err(|e| repair_failure(&raw, e))?;
+    // an OBJ is welded as a glTF is on reading: bit-identical positions become one vertex
+    // (a triangle soup, a seam-split export); the log then speaks of the file's vertices
+    let weld = (raw.source.format == Format::Obj)
+        .then(|| conformap_io::weld_coincident(&raw.positions, &raw.faces))
+        .filter(|w| w.merged() > 0);
+    let file_lines = raw.source.vertex_lines.clone();
+    if weld.is_some() {
+        raw = raw.weld_coincident().0;
+    }
+    let fixed = conformap_mesh::repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT);
+    raw.source.vertex_lines = file_lines;
+    let mut fixed = match (fixed, &weld) {
+        (Ok(f), _) => f,
+        (Err(e), None) => return Err(repair_failure(&raw, e)),
+        (Err(e), Some(_)) => {
+            return Err(Failure::input(format!(
+                "{}: {e}",
+                raw.source.path.display()
+            )))
+        }
+    };
+    if let Some(w) = &weld {
+        let log = &mut fixed.log;
+        log.vertex_to_input = log
+            .vertex_to_input
+            .iter()
+            .map(|&c| w.first[c as usize] as u32)
+            .collect();
+        log.input_to_vertex = w
+            .map
+            .iter()
+            .map(|&c| log.input_to_vertex[c as usize])
+            .collect();
+        log.input_vertices = w.map.len();
+        log.coincident_welded = w.merged();
+    }
     raw.positions = Vec::new();
     raw.faces = Vec::new();
     let log = fixed.log;

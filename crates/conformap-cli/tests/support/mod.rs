@@ -36,8 +36,12 @@ pub fn conformap_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     c.output().expect("run conformap")
 }
 
+/// A fresh directory for one test: unique per call (tests of one binary run in parallel
+/// threads and may share a tag).
 pub fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("conformap-robust-{tag}-{}", std::process::id()));
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let d = std::env::temp_dir().join(format!("conformap-test-{tag}-{}-{k}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).expect("temp dir");
     d
