@@ -1,7 +1,7 @@
 //! Probe (not a test): the cost of a picture. Reads a mesh, computes its disk map (CCEM-QN)
 //! once, then renders the surface view (checkerboard, default supersampling 3) and the map
-//! view (angle distortion) RUNS times each at SIZE × SIZE, printing every run and the median.
-//! `cargo run --release -p conformap-bench --example render_probe -- MESH.obj [SIZE] [RUNS]`
+//! view (angle distortion) RUNS times each at SIZE × SIZE (SUPERSAMPLE², default 3² samples per pixel), printing every run and the median.
+//! `cargo run --release -p conformap-bench --example render_probe -- MESH.obj [SIZE] [RUNS] [SUPERSAMPLE]`
 use std::time::Instant;
 
 use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
@@ -17,6 +17,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = args.next().ok_or("MESH.obj")?;
     let size: u32 = args.next().map_or(Ok(1024), |s| s.parse())?;
     let runs: usize = args.next().map_or(Ok(5), |r| r.parse())?;
+    let supersample: u32 = args.next().map_or(Ok(3), |r| r.parse())?;
     let mesh = conformap_io::read_mesh(std::path::Path::new(&path))?.mesh;
     let t = Instant::now();
     let map = compute_disk_map(&mesh, DiskMethod::CcemQn, &DiskOptions::DEFAULT)?;
@@ -28,7 +29,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rayon::current_num_threads()
     );
     let coords = MapCoords::Planar(UvValues::PerVertex(&map.map));
-    let base = RenderOptions::DEFAULT.with_size(size);
+    let base = RenderOptions::DEFAULT
+        .with_size(size)
+        .with_supersample(supersample);
     let views = [
         ("surface checker", base),
         (
