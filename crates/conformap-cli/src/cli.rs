@@ -2,6 +2,7 @@
 
 use clap::{Parser, Subcommand};
 
+use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
 use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, sphere::SphereArgs};
 use crate::failure::Failure;
@@ -14,6 +15,9 @@ pub struct Cli {
     /// The subcommand.
     #[command(subcommand)]
     pub command: Command,
+    /// No progress display and no summary line on stderr (errors are still printed).
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
 }
 
 /// The subcommands.
@@ -32,6 +36,11 @@ pub enum Command {
     /// Global conformal map of a surface with handles (genus ≥ 1) or several boundary
     /// loops by a holomorphic 1-form: a seamed layout, one `vt` per corner.
     Global(GlobalArgs),
+    /// Draw a map of a mesh (ours or another tool's): the surface with a checkerboard, the
+    /// flat map coloured by distortion, or the angle-distortion histogram.
+    Render(RenderArgs),
+    /// Run `disk` or `sphere` over many meshes: one JSON line per input, a summary line.
+    Batch(BatchArgs),
 }
 
 impl Command {
@@ -47,6 +56,8 @@ impl Command {
             Self::Sphere(args) => run_map(args),
             Self::Mobius(args) => run_map(args),
             Self::Global(args) => run_map(args),
+            Self::Render(args) => crate::commands::render::run(args),
+            Self::Batch(args) => crate::commands::batch::run(args),
         }
     }
 }

@@ -1,26 +1,49 @@
 //! The `conformap` binary: parses the command line, runs the command, prints what it
 //! returns (the only place that prints) and exits with its code.
 //!
-//! Exit codes: 0 success, 1 bad input, 2 usage error, 3 numerical failure.
+//! Exit codes: 0 success, 1 bad input, 2 usage error, 3 numerical failure, 4 some inputs of
+//! a batch failed. Progress (a spinner, a batch's bar) is drawn on stderr only when it is a
+//! terminal and the work takes over a second; `--quiet` turns it and the summary line off.
 
 use std::io::Write;
 use std::process::ExitCode;
 
 use clap::Parser;
-use conformap_cli::Cli;
+use conformap_cli::pipeline::context::{Progress, ProgressMode, RunContext};
+use conformap_cli::{Cli, Command};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command.run() {
+    let mode = ProgressMode::detect(cli.quiet);
+    let result = match &cli.command {
+        Command::Batch(args) => {
+            // JSON lines as they come (a closed pipe is not worth a panic)
+            let mut sink = |line: &str| {
+                let _ = writeln!(std::io::stdout().lock(), "{line}");
+            };
+            conformap_cli::commands::batch::run_streaming(args, mode, &mut sink)
+        }
+        command => {
+            let progress = Progress::spinner(mode);
+            let context = RunContext {
+                progress: Some(progress.bar_handle().clone()),
+                budget: None,
+            };
+            context.scope(|| command.run())
+        }
+    };
+    match result {
         Ok(outcome) => {
             if let Some(text) = &outcome.stdout {
                 // a closed pipe (`conformap info m.obj | head`) is not worth a panic
                 let _ = writeln!(std::io::stdout().lock(), "{text}");
             }
-            for line in &outcome.messages {
-                eprintln!("{line}");
+            if !cli.quiet {
+                for line in &outcome.messages {
+                    eprintln!("{line}");
+                }
             }
-            ExitCode::SUCCESS
+            ExitCode::from(outcome.exit_code)
         }
         Err(failure) => {
             eprintln!("error: {failure}");

@@ -98,6 +98,13 @@ impl MapCommand for MobiusArgs {
         &self.output
     }
 
+    fn picture_domain(&self) -> crate::pipeline::PictureDomain {
+        match self.domain {
+            Domain::Disk => crate::pipeline::PictureDomain::Plane,
+            Domain::Sphere => crate::pipeline::PictureDomain::Sphere,
+        }
+    }
+
     fn other_inputs(&self) -> Vec<&Path> {
         std::iter::once(self.param.as_path())
             .chain(self.region.as_deref())

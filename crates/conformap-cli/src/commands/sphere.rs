@@ -12,7 +12,7 @@ use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
-use crate::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved};
+use crate::pipeline::{Input, InputArgs, MapCommand, OutputArgs, PictureDomain, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
 
 /// The Möbius normalization applied to the sphere map.
@@ -55,6 +55,10 @@ impl MapCommand for SphereArgs {
 
     fn output(&self) -> &OutputArgs {
         &self.output
+    }
+
+    fn picture_domain(&self) -> PictureDomain {
+        PictureDomain::Sphere
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {

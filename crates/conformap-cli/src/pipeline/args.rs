@@ -53,6 +53,11 @@ pub struct OutputArgs {
     /// Write a JSON report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Also write pictures of the result: PREFIX_surface.png (the surface with a
+    /// checkerboard through the map) and PREFIX_map.png (the map coloured by angle
+    /// distortion), 1024 × 1024.
+    #[arg(long, value_name = "PREFIX")]
+    pub png: Option<PathBuf>,
     /// Exit with code 3, writing nothing, if the solver did not converge (or, for sphere
     /// maps, a triangle is inverted).
     #[arg(long)]
@@ -66,6 +71,7 @@ impl OutputArgs {
             output: output.into(),
             flat: None,
             report: None,
+            png: None,
             strict: false,
         }
     }

@@ -18,9 +18,11 @@
 //! 3. A variant in `crate::cli::Command` whose arm calls [`run_map`].
 
 pub mod args;
+pub mod context;
 pub mod input;
 pub mod memory;
 pub mod outputs;
+pub mod pictures;
 
 use std::path::Path;
 use std::time::Instant;
@@ -32,6 +34,7 @@ pub use args::{parse_size, InputArgs, OutputArgs};
 pub use input::{read_input, repair_input, Input};
 pub use memory::MemoryCheck;
 pub use outputs::{check_command_outputs, check_outputs, Staged};
+pub use pictures::PictureDomain;
 
 use crate::failure::Failure;
 use crate::report::{
@@ -62,6 +65,10 @@ pub trait MapCommand {
     fn peak_bytes(&self, mesh: &TriMesh) -> u64;
     /// Computes the map, its metrics and its report sections.
     fn solve(&self, input: &Input) -> Result<Solved, Failure>;
+    /// Where the map lands, for the `--png` pictures. Default: the plane.
+    fn picture_domain(&self) -> PictureDomain {
+        PictureDomain::Plane
+    }
 }
 
 /// What a command's solve returns to the pipeline.
@@ -125,6 +132,9 @@ pub struct Outcome {
     pub stdout: Option<String>,
     /// Lines for stderr.
     pub messages: Vec<String>,
+    /// The exit code of a command that completed with a partial failure (`batch`: 4 when
+    /// some input failed); 0 otherwise.
+    pub exit_code: u8,
 }
 
 /// Runs a map command through the pipeline.
@@ -139,9 +149,12 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     let mesh_path = &input_args.mesh;
     let memory = MemoryCheck::before_reading(mesh_path, input_args.max_memory)
         .map_err(|f| f.in_file(mesh_path))?;
+    let reading = context::reserve(memory.read_estimate);
+    context::stage(format!("reading {}", mesh_path.display()));
     let t = Instant::now();
     let input = read_input(mesh_path, input_args.repair)?;
     let read_ms = ms_since(t);
+    drop(reading);
     let mesh = &input.mesh;
     let what = format!(
         "{} of this mesh ({} vertices, {} faces)",
@@ -152,6 +165,8 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     let memory = memory
         .before_solving(cmd.peak_bytes(mesh), &what)
         .map_err(|f| input.fail(f))?;
+    let _solving = context::reserve(memory.estimate);
+    context::stage(format!("{}: computing {what}", mesh_path.display()));
     let solved = cmd.solve(&input)?;
     if let Some(why) = solved.strict_violation.as_ref().filter(|_| output.strict) {
         return Err(input.fail(Failure::Numerical(format!(
@@ -160,6 +175,7 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     }
 
     let t = Instant::now();
+    context::stage(format!("{}: writing", mesh_path.display()));
     let mut staged = Staged::new();
     match &solved.uv {
         TexCoords::PerVertex(uv) => {
@@ -171,6 +187,9 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     if let Some(path) = &output.flat {
         let faces = solved.flat.1.as_deref().unwrap_or(mesh.faces());
         staged.flat(path, &solved.flat.0, faces)?;
+    }
+    if let Some(prefix) = &output.png {
+        pictures::stage_pictures(&mut staged, prefix, mesh, &solved, cmd.picture_domain())?;
     }
     if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {
         staged.text(path, &input::vertex_map_text(log))?;
@@ -217,6 +236,7 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
         report: Some(report),
         stdout: None,
         messages,
+        exit_code: 0,
     })
 }
 

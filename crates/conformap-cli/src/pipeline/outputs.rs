@@ -41,6 +41,13 @@ pub fn check_command_outputs(
     if let Some(p) = &input.vertex_map {
         outputs.push(("--vertex-map", p, false));
     }
+    let pictures = output
+        .png
+        .as_deref()
+        .map(crate::pipeline::pictures::png_paths);
+    for p in pictures.iter().flatten() {
+        outputs.push(("--png", p, false));
+    }
     let inputs: Vec<&Path> = std::iter::once(input.mesh.as_path())
         .chain(other_inputs.iter().copied())
         .collect();
@@ -185,6 +192,12 @@ impl Staged {
     ) -> Result<(), Failure> {
         let path = self.stage_path(target);
         conformap_io::write_flat(&path, points, faces).map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages a PNG picture.
+    pub fn png(&mut self, target: &Path, image: &conformap_render::Image) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        crate::pipeline::pictures::write_png(&path, image).map_err(|e| renamed(e, &path, target))
     }
 
     /// Stages a text file.

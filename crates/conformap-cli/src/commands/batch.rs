@@ -1,0 +1,370 @@
+//! `conformap batch --command disk|sphere --out-dir DIR [--jobs N] [--skip-existing]
+//! [--report R.jsonl] MANIFEST|MESH… [-- OPTIONS]`: one map command over many meshes.
+//!
+//! Each input runs as the single command would: its command line
+//! `conformap <command> MESH -o DIR/<stem>.<ext> --report DIR/<stem>.json [OPTIONS]` is
+//! parsed by the same parser and run by the same [`run_map`], so the outputs equal a
+//! single run's byte for byte. One JSON line per input (in input order) and a summary line
+//! go to the caller's sink and to `--report`. `--jobs N` runs N inputs at once, each on one
+//! thread, as far as their memory estimates fit the memory available at the start
+//! ([`crate::pipeline::context::MemoryBudget`]).
+
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+use clap::{Args, Parser, ValueEnum};
+use serde_json::{json, Value};
+
+use crate::cli::{Cli, Command};
+use crate::commands::batch_inputs::{collect_inputs, BatchInput};
+use crate::failure::Failure;
+use crate::pipeline::context::{MemoryBudget, Progress, ProgressMode, RunContext};
+use crate::pipeline::{check_outputs, parse_size, run_map, MapCommand, Outcome};
+use crate::report::ms_since;
+
+/// The map command a batch runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum BatchCommand {
+    /// `conformap disk` (one boundary loop, or the disk with holes).
+    Disk,
+    /// `conformap sphere`.
+    Sphere,
+    /// `conformap global` (surfaces with handles or several boundary loops; seamed outputs).
+    Global,
+}
+
+impl BatchCommand {
+    /// The subcommand's name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Disk => "disk",
+            Self::Sphere => "sphere",
+            Self::Global => "global",
+        }
+    }
+}
+
+/// The map command inside a parsed command line (the batchable ones).
+fn as_map(command: &Command) -> Option<&dyn MapCommand> {
+    match command {
+        Command::Disk(a) => Some(a),
+        Command::Sphere(a) => Some(a),
+        Command::Global(a) => Some(a),
+        _ => None,
+    }
+}
+
+/// Arguments of `conformap batch`.
+#[derive(Debug, Clone, Args)]
+pub struct BatchArgs {
+    /// The command run on every input.
+    #[arg(long, value_enum)]
+    pub command: BatchCommand,
+    /// Where the outputs go: DIR/<stem>.<ext> and DIR/<stem>.json (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+    /// Inputs run at once (each on one thread), as far as their memory estimates fit.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=256))]
+    pub jobs: u32,
+    /// Skip an input whose outputs all exist already.
+    #[arg(long)]
+    pub skip_existing: bool,
+    /// Also write the JSON lines here.
+    #[arg(long, value_name = "R.jsonl")]
+    pub report: Option<PathBuf>,
+    /// Output mesh format (obj, gltf, glb). Default: the input's.
+    #[arg(long)]
+    pub ext: Option<String>,
+    /// Also write DIR/<stem>_surface.png and DIR/<stem>_map.png (as --png of the command).
+    #[arg(long)]
+    pub png: bool,
+    /// The memory all jobs together may use (bytes, or with K/M/G/T); passed to every run
+    /// as its --max-memory. Default: the memory available at the start.
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_memory: Option<u64>,
+    /// Meshes, and manifests (any other extension: one path per line, or CSV with a `path`
+    /// column; relative paths from the manifest's directory).
+    #[arg(required = true, value_name = "MANIFEST|MESH")]
+    pub inputs: Vec<PathBuf>,
+    /// Options of the command, after `--` (e.g. `-- --method cem --strict`).
+    #[arg(last = true, value_name = "OPTIONS")]
+    pub options: Vec<String>,
+}
+
+/// One input, planned: its command and its outputs.
+struct Job {
+    input: BatchInput,
+    command: Command,
+    outputs: Vec<PathBuf>,
+}
+
+impl BatchArgs {
+    /// The single run of `input`: its command line, parsed as the binary parses it.
+    fn command_line(&self, input: &BatchInput) -> Result<Job, Failure> {
+        let ext = match &self.ext {
+            Some(e) => e.trim_start_matches('.').to_string(),
+            None => input
+                .mesh
+                .extension()
+                .map(|e| e.to_string_lossy().to_ascii_lowercase())
+                .filter(|e| matches!(e.as_str(), "obj" | "gltf" | "glb"))
+                .unwrap_or_else(|| "obj".to_string()),
+        };
+        let mesh_out = self.out_dir.join(format!("{}.{ext}", input.stem));
+        let report = self.out_dir.join(format!("{}.json", input.stem));
+        let mut argv: Vec<std::ffi::OsString> = vec![
+            "conformap".into(),
+            self.command.name().into(),
+            input.mesh.clone().into(),
+            "-o".into(),
+            mesh_out.clone().into(),
+            "--report".into(),
+            report.clone().into(),
+        ];
+        let mut outputs = vec![mesh_out, report];
+        if self.png {
+            let prefix = self.out_dir.join(&input.stem);
+            outputs.extend(crate::pipeline::pictures::png_paths(&prefix));
+            argv.extend(["--png".into(), prefix.into()]);
+        }
+        if let Some(m) = self.max_memory {
+            argv.extend(["--max-memory".into(), m.to_string().into()]);
+        }
+        argv.extend(self.options.iter().map(Into::into));
+        let cli = Cli::try_parse_from(&argv).map_err(|e| {
+            Failure::Usage(format!(
+                "the options after -- do not fit `conformap {}`: {}",
+                self.command.name(),
+                e.to_string()
+                    .lines()
+                    .next()
+                    .unwrap_or_default()
+                    .trim_start_matches("error: ")
+            ))
+        })?;
+        let map = as_map(&cli.command).ok_or_else(|| {
+            Failure::Usage(format!("`{}` cannot run in a batch", self.command.name()))
+        })?;
+        if map.output().flat.is_some() || map.input().vertex_map.is_some() {
+            return Err(Failure::Usage(
+                "--flat and --vertex-map name one file, not one per input: batch writes \
+                 DIR/<stem>.<ext> and DIR/<stem>.json"
+                    .to_string(),
+            ));
+        }
+        if map.output().png.is_some() && !self.png {
+            return Err(Failure::Usage(
+                "--png PREFIX names one prefix, not one per input: use `batch --png`".into(),
+            ));
+        }
+        Ok(Job {
+            input: input.clone(),
+            command: cli.command,
+            outputs,
+        })
+    }
+}
+
+/// Runs `conformap batch`, collecting the JSON lines as the outcome's stdout.
+///
+/// # Errors
+/// See [`run_streaming`].
+pub fn run(args: &BatchArgs) -> Result<Outcome, Failure> {
+    let mut lines = Vec::new();
+    let mut outcome = run_streaming(args, ProgressMode::Hidden, &mut |l| {
+        lines.push(l.to_string())
+    })?;
+    outcome.stdout = Some(lines.join("\n"));
+    Ok(outcome)
+}
+
+/// Runs `conformap batch`, giving each JSON line to `sink` as soon as it and every line
+/// before it are known (input order), with a progress bar in `mode`. The outcome's exit
+/// code is 4 when some input failed.
+///
+/// # Errors
+/// Usage (2): no input, two inputs with one stem, options that do not fit the command, an
+/// output naming an input. Bad input (1): an unreadable manifest, an output directory
+/// that cannot be created or written, a `--report` that cannot be written. A failing input
+/// is not an error: it is a `failed` line.
+pub fn run_streaming(
+    args: &BatchArgs,
+    mode: ProgressMode,
+    sink: &mut dyn FnMut(&str),
+) -> Result<Outcome, Failure> {
+    let t_all = Instant::now();
+    let inputs = collect_inputs(&args.inputs)?;
+    std::fs::create_dir_all(&args.out_dir).map_err(|e| {
+        Failure::BadInput(
+            format!("cannot create {}: {e}", args.out_dir.display()),
+            Some("write the outputs elsewhere (--out-dir)".to_string()),
+        )
+    })?;
+    let jobs = inputs
+        .iter()
+        .map(|i| args.command_line(i))
+        .collect::<Result<Vec<_>, _>>()?;
+    let meshes: Vec<&Path> = jobs.iter().map(|j| j.input.mesh.as_path()).collect();
+    let mut report = match &args.report {
+        Some(p) => {
+            check_outputs(&[("--report", p, false)], &meshes)?;
+            Some(
+                std::fs::File::create(p)
+                    .map_err(|e| Failure::input(format!("cannot write {}: {e}", p.display())))?,
+            )
+        }
+        None => None,
+    };
+    let workers = (args.jobs as usize).min(jobs.len()).max(1);
+    let budget = (workers > 1)
+        .then(|| {
+            args.max_memory
+                .or_else(|| conformap_operators::available_memory().map(|(m, _)| m))
+        })
+        .flatten()
+        .map(MemoryBudget::new);
+
+    let progress = Progress::bar(mode, jobs.len() as u64);
+    let bar = progress.bar_handle().clone();
+    let (mut ok, mut failed, mut skipped) = (0usize, 0usize, 0usize);
+    let mut emit = |line: &Value| {
+        let text = line.to_string();
+        bar.suspend(|| sink(&text));
+        if let Some(f) = report.as_mut() {
+            // the JSON lines file is a by-product: a full disk must not stop the batch
+            let _ = writeln!(f, "{text}").and_then(|()| f.flush());
+        }
+    };
+    let next = AtomicUsize::new(0);
+    let (tx, rx) = mpsc::channel::<(usize, Value)>();
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            let tx = tx.clone();
+            let (jobs, next, budget) = (&jobs, &next, budget.clone());
+            s.spawn(move || {
+                let pool = (workers > 1)
+                    .then(|| rayon::ThreadPoolBuilder::new().num_threads(1).build().ok())
+                    .flatten();
+                let context = RunContext {
+                    progress: None,
+                    budget,
+                };
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(job) = jobs.get(k) else { break };
+                    let line = context.scope(|| match &pool {
+                        Some(p) => p.install(|| run_job(job, args.skip_existing)),
+                        None => run_job(job, args.skip_existing),
+                    });
+                    if tx.send((k, line)).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(tx);
+        let mut pending = BTreeMap::new();
+        let mut due = 0;
+        for (k, line) in rx {
+            pending.insert(k, line);
+            while let Some(line) = pending.remove(&due) {
+                match line["status"].as_str() {
+                    Some("ok") => ok += 1,
+                    Some("skipped") => skipped += 1,
+                    _ => failed += 1,
+                }
+                bar.inc(1);
+                bar.set_message(jobs[due].input.stem.clone());
+                emit(&line);
+                due += 1;
+            }
+        }
+    });
+    let exit_code = if failed > 0 { 4 } else { 0 };
+    let peak = conformap_operators::peak_rss_bytes();
+    emit(&json!({ "summary": {
+        "command": args.command.name(),
+        "inputs": jobs.len(),
+        "ok": ok,
+        "failed": failed,
+        "skipped": skipped,
+        "jobs": workers,
+        "exit_code": exit_code,
+        "peak_rss_bytes": peak,
+        "total_ms": ms_since(t_all),
+    }}));
+    drop(progress);
+    Ok(Outcome {
+        messages: vec![format!(
+            "batch {}: {} inputs, {ok} ok, {failed} failed, {skipped} skipped; {:.0} ms",
+            args.command.name(),
+            jobs.len(),
+            ms_since(t_all)
+        )],
+        exit_code,
+        ..Outcome::default()
+    })
+}
+
+/// Runs one input (or skips it) and describes the result as its JSON line.
+fn run_job(job: &Job, skip_existing: bool) -> Value {
+    let input = job.input.mesh.display().to_string();
+    let outputs: Vec<String> = job
+        .outputs
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
+    if skip_existing && job.outputs.iter().all(|p| p.exists()) {
+        return json!({ "input": input, "status": "skipped", "outputs": outputs });
+    }
+    let t = Instant::now();
+    let result = match as_map(&job.command) {
+        Some(cmd) => std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run_map(cmd)))
+            .unwrap_or_else(|_| {
+                Err(Failure::Numerical(
+                    "internal error (a panic) while mapping this input: please report it \
+                     with the file"
+                        .to_string(),
+                ))
+            }),
+        None => Err(Failure::Usage("not a map command".to_string())),
+    };
+    match result {
+        Ok(Outcome {
+            report: Some(r), ..
+        }) => json!({
+            "input": input,
+            "status": "ok",
+            "command": r.command,
+            "method": r.method,
+            "outputs": outputs,
+            "converged": r.solver.converged,
+            "metrics": r.metrics,
+            "timings_ms": r.timings_ms,
+            "memory": r.memory,
+        }),
+        Ok(_) => json!({ "input": input, "status": "failed", "error": "no report" }),
+        Err(f) => json!({
+            "input": input,
+            "status": "failed",
+            "exit_code": f.exit_code(),
+            "exit_class": exit_class(&f),
+            "error": f.to_string(),
+            "hint": f.hint(),
+            "time_ms": ms_since(t),
+        }),
+    }
+}
+
+/// The name of a failure's exit class.
+fn exit_class(f: &Failure) -> &'static str {
+    match f {
+        Failure::BadInput(..) => "bad input",
+        Failure::Usage(_) => "usage",
+        Failure::Numerical(_) => "numerical",
+    }
+}
