@@ -271,3 +271,45 @@ fn real_higher_genus_meshes() {
         assert!(away < bound, "{name}: {away}");
     }
 }
+
+#[test]
+fn seamed_maps_render_and_batch_runs_global() {
+    let d = tmpdir("global-render-batch");
+    let (out, png) = (d.join("e.obj"), d.join("e.png"));
+    let eight = fixture("eightsim.obj");
+    let o = conformap(&["global", s(&eight), "-o", s(&out), "--png", s(&d.join("p"))]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("p_surface.png").is_file() && d.join("p_map.png").is_file());
+    let o = conformap(&["render", s(&eight), s(&out), "-o", s(&png), "--size", "128"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("seamed planar map"), "{}", stderr(&o));
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // batch: one ok line per surface with handles, the disk refused naming `conformap disk`
+    let o = conformap(&[
+        "batch",
+        "--command",
+        "global",
+        "--out-dir",
+        s(&d.join("out")),
+        s(&eight),
+        s(&fixture("spothead.obj")),
+    ]);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 3);
+    assert_eq!(lines[0]["status"], "ok");
+    assert_eq!(lines[0]["metrics"]["folds_outside_zeros"], 0);
+    assert_eq!(lines[1]["status"], "failed");
+    assert!(lines[1]["error"]
+        .as_str()
+        .unwrap()
+        .contains("conformap disk"));
+    // the batch output equals a single run's, byte for byte
+    assert_eq!(
+        std::fs::read(d.join("out").join("eightsim.obj")).unwrap(),
+        std::fs::read(&out).unwrap()
+    );
+}
