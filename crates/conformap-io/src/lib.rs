@@ -54,6 +54,7 @@ mod objfile;
 mod raw;
 
 pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
+pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
