@@ -26,3 +26,7 @@ bench *ARGS:
 # regenerate golden reports on purpose
 bless:
     CONFORMAP_BLESS=1 cargo test -p conformap-cli --test golden
+
+# licences, advisories, bans and sources of the dependency tree (cargo install cargo-deny)
+deny:
+    cargo deny check

@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use conformap_disk::{koebe, KoebeOptions, KOEBE_TOL_WITHOUT_POLISH};
+use conformap_disk::{koebe, KoebeOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_testkit::{read_plain_obj, real_mesh_or_skip};
 
@@ -28,7 +28,7 @@ fn main() {
     let polish = !args.iter().any(|a| a == "--no-polish");
     let mut options = KoebeOptions::DEFAULT.with_polish(polish);
     if !polish {
-        options = options.with_tol(KOEBE_TOL_WITHOUT_POLISH);
+        options = options.with_tol(KoebeOptions::TOL_WITHOUT_POLISH);
     }
     if let Some(t) = args.iter().find_map(|a| a.strip_prefix("--tol=")) {
         match t.parse() {

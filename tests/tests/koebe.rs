@@ -2,7 +2,7 @@
 //! analytic meshes with known answers and on the committed halftunnel fixture; the class-b
 //! meshes of `../shared/meshes/` run with `cargo test --release -p conformap-tests -- --ignored`.
 
-use conformap_disk::{koebe, CircleDomainMap, KoebeError, KoebeOptions, KOEBE_TOL_WITHOUT_POLISH};
+use conformap_disk::{koebe, CircleDomainMap, DiskError, KoebeOptions};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_testkit::{
@@ -213,10 +213,12 @@ fn koebe_iteration_alone_converges_to_circles() {
     let mesh = read_plain_obj(&fixture_path("halftunnel.obj")).expect("fixture");
     let options = KoebeOptions::DEFAULT
         .with_polish(false)
-        .with_tol(KOEBE_TOL_WITHOUT_POLISH);
+        .with_tol(KoebeOptions::TOL_WITHOUT_POLISH);
     let out = koebe(&mesh, &options).expect("koebe");
     assert!(out.report.converged && out.report.polish.is_none());
-    assert!(*out.report.residual_history.last().unwrap_or(&1.0) <= KOEBE_TOL_WITHOUT_POLISH);
+    assert!(
+        *out.report.residual_history.last().unwrap_or(&1.0) <= KoebeOptions::TOL_WITHOUT_POLISH
+    );
     assert!(worst_residual(&out) < CIRCLE_RESIDUAL, "{:?}", out.circles);
     // linear convergence: at least a factor 5 per sweep after the first
     for w in out.report.residual_history[1..].windows(2) {
@@ -228,7 +230,7 @@ fn koebe_iteration_alone_converges_to_circles() {
 fn genus_one_with_boundary_is_refused() {
     let mesh = read_plain_obj(&fixture_path("punctured_torus.obj")).expect("fixture");
     match koebe(&mesh, &KoebeOptions::DEFAULT) {
-        Err(e @ KoebeError::NotGenusZero { .. }) => {
+        Err(e @ DiskError::NotGenusZero { .. }) => {
             let text = e.to_string();
             assert!(
                 text.contains("genus-0") && text.contains("genus 1"),
@@ -244,15 +246,15 @@ fn options_are_checked() {
     let mesh = annulus(0.5, 1.0, 2, 12);
     assert!(matches!(
         koebe(&mesh, &KoebeOptions::DEFAULT.with_outer(Some(2))),
-        Err(KoebeError::OuterLoopOutOfRange { index: 2, loops: 2 })
+        Err(DiskError::OuterLoopOutOfRange { index: 2, loops: 2 })
     ));
     assert!(matches!(
         koebe(&mesh, &KoebeOptions::DEFAULT.with_tol(f64::NAN)),
-        Err(KoebeError::InvalidOption { name: "tol", .. })
+        Err(DiskError::InvalidOption { name: "tol", .. })
     ));
     assert!(matches!(
         koebe(&mesh, &KoebeOptions::DEFAULT.with_max_sweeps(0)),
-        Err(KoebeError::InvalidOption { .. })
+        Err(DiskError::InvalidOption { .. })
     ));
 }
 

@@ -1,4 +1,5 @@
-//! Failures of a command, classified by exit code.
+//! Failures of a command, classified by exit code, and every mapping from a library error
+//! to a failure (and so to an exit code and a hint): the one place where that is decided.
 
 use std::fmt;
 
@@ -85,9 +86,16 @@ fn io_hint(e: &conformap_io::IoError) -> Option<&'static str> {
             "re-export the asset, or check it with the Khronos glTF validator; the message \
              names the mesh, primitive and accessor"
         }
+        E::NotPerVertexUv {
+            problem: conformap_io::UvProblem::Missing { .. },
+            ..
+        } => {
+            "give every face corner a texture coordinate (f v/vt), or pass the map as a flat \
+             mesh without any"
+        }
         E::NotPerVertexUv { .. } => {
             "export the map with one texture coordinate per vertex (no seams), or pass it as \
-             a flat mesh"
+             a flat mesh; `conformap metrics` also judges seamed maps"
         }
         E::Backend { .. } => "this is a conformap bug: please report it with the file",
         _ => return None,
@@ -175,6 +183,17 @@ impl From<conformap_disk::DiskError> for Failure {
                 };
                 Self::BadInput(e.to_string(), Some(hint))
             }
+            E::NotGenusZero { .. } => Self::BadInput(
+                e.to_string(),
+                Some(
+                    "`conformap info MESH` shows the topology; a disk map needs genus 0 and \
+                     at least one boundary loop (`conformap global` maps surfaces with \
+                     handles)"
+                        .to_string(),
+                ),
+            ),
+            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
+            E::Fill(_) => Self::BadInput(e.to_string(), None),
             other => Self::Numerical(other.to_string()),
         }
     }
@@ -182,13 +201,11 @@ impl From<conformap_disk::DiskError> for Failure {
 
 /// The failure for a mesh [`conformap_mesh::repair`] could not repair, naming the file
 /// place of the element (the repair reports input numbering).
-pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairError) -> Failure {
-    use conformap_mesh::{MeshError, RepairError};
+pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::MeshError) -> Failure {
+    use conformap_mesh::MeshError;
     match e {
-        RepairError::Invalid(inner) => raw.invalid_mesh(inner).into(),
-        RepairError::NonOrientable { face, other, a, b } => {
-            let at = MeshError::InconsistentOrientation { face, other, a, b };
-            let place = match raw.origin_of(&at) {
+        MeshError::NonOrientable { .. } => {
+            let place = match raw.origin_of(&e) {
                 Some(conformap_io::Origin::Line(l)) => format!(":{l}"),
                 Some(o) => format!(" ({o})"),
                 None => String::new(),
@@ -202,6 +219,41 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::RepairErro
                 ),
             )
         }
-        other => Failure::input(format!("{}: {other}", raw.source.path.display())),
+        other => raw.invalid_mesh(other).into(),
+    }
+}
+
+impl From<conformap_global::GlobalError> for Failure {
+    /// Wrong topology, bad options and bad given maps or regions are bad input (exit 1),
+    /// everything else numerical (exit 3).
+    fn from(e: conformap_global::GlobalError) -> Self {
+        use conformap_global::GlobalError as E;
+        let hint = match &e {
+            E::WrongTopology { .. } => Some(
+                "`conformap info MESH` shows the topology: `sphere` maps closed genus-0 \
+                 meshes, `disk` meshes with boundary loops and no handles, `global` meshes \
+                 with handles or several boundary loops"
+                    .to_string(),
+            ),
+            _ => None,
+        };
+        match e {
+            E::WrongTopology { .. }
+            | E::MapLength { .. }
+            | E::NonFiniteMap { .. }
+            | E::NotOnSphere { .. }
+            | E::NotInDisk { .. }
+            | E::RegionFaceOutOfRange { .. }
+            | E::DegenerateRegion { .. }
+            | E::InvalidOption { .. } => Self::BadInput(e.to_string(), hint),
+            other => Self::Numerical(other.to_string()),
+        }
+    }
+}
+
+impl From<conformap_metrics::MetricsError> for Failure {
+    /// The metrics of a map the solver computed cannot fail on good input: numerical.
+    fn from(e: conformap_metrics::MetricsError) -> Self {
+        Self::Numerical(e.to_string())
     }
 }

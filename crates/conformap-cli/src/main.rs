@@ -1,53 +1,27 @@
-//! The conformap command-line tool: conformal parameterization of triangle meshes over OBJ
-//! and glTF.
+//! The `conformap` binary: parses the command line, runs the command, prints what it
+//! returns (the only place that prints) and exits with its code.
 //!
-//! A thin layer over the library crates: argument checking, JSON reports, exit codes.
 //! Exit codes: 0 success, 1 bad input, 2 usage error, 3 numerical failure.
 
-mod commands;
-mod failure;
-mod report;
-
+use std::io::Write;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
-
-use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::{mobius::MobiusArgs, sphere::SphereArgs};
-
-/// Conformal (angle-preserving) parameterization of triangle meshes.
-#[derive(Debug, Parser)]
-#[command(name = "conformap", version, about, long_about = None)]
-struct Cli {
-    #[command(subcommand)]
-    command: Command,
-}
-
-#[derive(Debug, Subcommand)]
-enum Command {
-    /// Topology and validity of a mesh.
-    Info(InfoArgs),
-    /// Conformal map of a disk-like mesh (one boundary loop) onto the unit disk.
-    Disk(DiskArgs),
-    /// Judge a planar map of a mesh (ours or another tool's).
-    Metrics(MetricsArgs),
-    /// Conformal map of a closed genus-0 mesh onto the unit sphere.
-    Sphere(SphereArgs),
-    /// Optimal Möbius transformation of a disk or sphere map (uniformity or emphasized area).
-    Mobius(MobiusArgs),
-}
+use clap::Parser;
+use conformap_cli::Cli;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Info(args) => commands::info::run(&args),
-        Command::Disk(args) => commands::disk::run(&args),
-        Command::Metrics(args) => commands::metrics::run(&args),
-        Command::Sphere(args) => commands::sphere::run(&args),
-        Command::Mobius(args) => commands::mobius::run(&args),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
+    match cli.command.run() {
+        Ok(outcome) => {
+            if let Some(text) = &outcome.stdout {
+                // a closed pipe (`conformap info m.obj | head`) is not worth a panic
+                let _ = writeln!(std::io::stdout().lock(), "{text}");
+            }
+            for line in &outcome.messages {
+                eprintln!("{line}");
+            }
+            ExitCode::SUCCESS
+        }
         Err(failure) => {
             eprintln!("error: {failure}");
             if let Some(hint) = failure.hint() {

@@ -1,35 +1,8 @@
 //! End-to-end runs of the `conformap` binary on the fixtures.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
-fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures")
-        .join(name)
-}
-
-fn conformap(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_conformap"))
-        .args(args)
-        .output()
-        .expect("run conformap")
-}
-
-fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("conformap-cli-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("parse json")
-}
+use support::{conformap, fixture, json, s, stderr, tmpdir};
 
 #[test]
 fn disk_maps_spothead_and_metrics_agree_with_the_report() {
@@ -45,7 +18,7 @@ fn disk_maps_spothead_and_metrics_agree_with_the_report() {
         "--report",
         s(&rep),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let r = json(&rep);
     assert_eq!(r["command"], "disk");
     assert_eq!(r["method"], "ccem-qn");
@@ -84,7 +57,7 @@ fn disk_maps_spothead_and_metrics_agree_with_the_report() {
     // judge the written files: both agree with the report to 1e-9 relative
     for param in [&out, &flat] {
         let o = conformap(&["metrics", s(&fixture("spothead.obj")), s(param), "--json"]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{}", stderr(&o));
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
         assert!(
@@ -111,11 +84,7 @@ fn methods_rank_as_expected_on_woody() {
             "--report",
             s(&rep),
         ]);
-        assert!(
-            o.status.success(),
-            "{method}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        assert!(o.status.success(), "{method}: {}", stderr(&o));
         let r = json(&rep);
         assert_eq!(r["method"], method);
         assert_eq!(r["metrics"]["flipped_faces"], 0, "{method}");
@@ -137,7 +106,7 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
     let out = d.join("t.obj");
     let o = conformap(&["disk", s(&fixture("punctured_torus.obj")), "-o", s(&out)]);
     assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert!(
         err.contains("genus 1") && err.contains("1 boundary loop"),
         "{err}"
@@ -145,7 +114,7 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
     assert!(!out.exists());
     let o = conformap(&["disk", s(&fixture("spot.obj")), "-o", s(&out)]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("closed genus-0"));
+    assert!(stderr(&o).contains("closed genus-0"));
     assert!(!out.exists());
     // several boundary loops are no longer refused: the disk with circular holes
     let rep = d.join("h.json");
@@ -157,7 +126,7 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
         "--report",
         s(&rep),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.exists());
     let r = json(&rep);
     assert_eq!(r["method"], "koebe");
@@ -178,7 +147,7 @@ fn several_loops_map_onto_a_disk_with_circular_holes() {
         "--report",
         s(&rep),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let r = json(&rep);
     assert_eq!(r["input"]["boundaries"], 3);
     let solver = &r["solver"];
@@ -206,7 +175,7 @@ fn several_loops_map_onto_a_disk_with_circular_holes() {
     assert!(m["angle_distortion_deg"]["mean"].as_f64().unwrap() > 0.0);
     // the metrics command agrees on the flat mesh (the outer loop given explicitly)
     let o = conformap(&["metrics", s(&fixture("halftunnel.obj")), s(&flat), "--json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     // --outer picks another loop; a loop that does not exist is a usage error
     let rep2 = d.join("r2.json");
     let o = conformap(&[
@@ -219,7 +188,7 @@ fn several_loops_map_onto_a_disk_with_circular_holes() {
         "--report",
         s(&rep2),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let r2 = json(&rep2);
     assert_eq!(r2["circle_domain"]["outer_loop"], 2);
     assert_eq!(r2["circle_domain"]["circles"][2]["outer"], true);
@@ -232,7 +201,7 @@ fn several_loops_map_onto_a_disk_with_circular_holes() {
         "3",
     ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--outer 3"));
+    assert!(stderr(&o).contains("--outer 3"));
 }
 
 #[test]
@@ -283,7 +252,7 @@ fn broken_files_name_the_line_and_write_nothing() {
         ("bad/garbage_line.obj", "garbage_line.obj:4:"),
     ] {
         let o = conformap(&["disk", s(&fixture(file)), "-o", s(&out)]);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{file}: {err}");
         assert!(
             err.contains(needle),
@@ -300,12 +269,7 @@ fn broken_files_name_the_line_and_write_nothing() {
 fn usage_errors_exit_2() {
     let d = tmpdir("usage");
     let o = conformap(&["disk", s(&fixture("woody.obj")), "-o", s(&d.join("o.stl"))]);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let o = conformap(&["disk", s(&fixture("woody.obj"))]);
     assert_eq!(o.status.code(), Some(2));
     let o = conformap(&[
@@ -333,12 +297,7 @@ fn strict_without_convergence_exits_3_and_writes_nothing() {
         "1",
         "--strict",
     ]);
-    assert_eq!(
-        o.status.code(),
-        Some(3),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     assert!(!out.exists());
 }
 
@@ -356,10 +315,10 @@ fn gltf_and_glb_outputs_round_trip_through_metrics() {
             "--report",
             s(&rep),
         ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{}", stderr(&o));
         let ec = json(&rep)["metrics"]["conformal_energy"].as_f64().unwrap();
         let o = conformap(&["metrics", s(&fixture("woody.obj")), s(&out), "--json"]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{}", stderr(&o));
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
         // glTF stores texture coordinates as f32
@@ -410,11 +369,7 @@ fn orderings_give_the_same_map() {
             "--report",
             s(&rep),
         ]);
-        assert!(
-            o.status.success(),
-            "{ordering}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        assert!(o.status.success(), "{ordering}: {}", stderr(&o));
         let r = json(&rep);
         runs.push((
             r["factorization"]["ordering"].as_str().unwrap().to_string(),

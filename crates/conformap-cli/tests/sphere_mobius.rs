@@ -1,39 +1,8 @@
 //! End-to-end runs of `conformap sphere` and `conformap mobius` on the fixtures.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
-fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures")
-        .join(name)
-}
-
-fn conformap(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_conformap"))
-        .args(args)
-        .output()
-        .expect("run conformap")
-}
-
-fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("conformap-global-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
-fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("parse json")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
+use support::{conformap, fixture, json, s, stderr, tmpdir};
 
 #[test]
 fn sphere_then_mobius_on_spot() {

@@ -12,6 +12,19 @@ use std::f64::consts::{PI, TAU};
 
 use num_complex::Complex64;
 
+/// Each time the map folds with gaps at the floor, the floor is multiplied by this.
+pub(crate) const GAP_FLOOR_STEP: f64 = 1e3;
+/// The floor is never raised above this (radians), nor above a tenth of the mean gap
+/// `2π / n_B`: beyond it, the floor would distort the whole boundary. Four floors are
+/// tried from the default `1e-13`: `1e-13, 1e-10, 1e-7, 1e-4`.
+pub(crate) const GAP_FLOOR_MAX: f64 = 1e-4;
+
+/// Default first floor on the angle between consecutive boundary vertices when the
+/// boundary has to be put back in order: `1e-13` radians, about 140 units in the last place
+/// of an angle near `2π`, the smallest gap f64 angles resolve with margin (the same value
+/// as CCEM's `min_gap`).
+pub(crate) const UNFOLD_MIN_GAP: f64 = 1e-13;
+
 /// Increasing angles of boundary values on the circle, and how many gaps had to be repaired.
 #[derive(Debug, Clone)]
 pub(crate) struct Unwrapped {

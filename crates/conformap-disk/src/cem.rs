@@ -9,20 +9,16 @@ use crate::problem::DiskProblem;
 use crate::report::{DiskMap, SolverReport};
 use crate::DiskError;
 
-/// Default iteration cap of CEM: 20, as in both papers (CEM §5, CCEM §5 use CEM with 20
-/// iterations); CEM gains little after that.
-pub const CEM_MAX_ITER: usize = 20;
-/// Default stopping tolerance: stop when `|E_C^(k−1) − E_C^(k)| ≤ tol · |E_C^(k)|`.
-/// `1e-6` relative, as in both papers (relative, not absolute: `E_C` can be ~3e-3).
-pub const CEM_TOL: f64 = 1e-6;
-
 /// Options of [`cem`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct CemOptions {
-    /// Iteration cap. Default: [`CEM_MAX_ITER`] (20).
+    /// Iteration cap. Default: 20, as in both papers (CEM §5, CCEM §5 use CEM with 20
+    /// iterations); CEM gains little after that.
     pub max_iter: usize,
-    /// Relative energy-drop tolerance. Default: [`CEM_TOL`] (1e-6).
+    /// Relative energy-drop tolerance: stop when `|E_C^(k−1) − E_C^(k)| ≤ tol · |E_C^(k)|`.
+    /// Default: `1e-6` relative, as in both papers (relative, not absolute: `E_C` can be
+    /// ~3e-3).
     pub tol: f64,
     /// Use Remark 3's reflected interior values `f_i / |f_i|²` in the boundary update
     /// (Algorithm 1, step 7). Default: `true`; `false` gives the plain Eq. 23.
@@ -32,8 +28,8 @@ pub struct CemOptions {
 impl CemOptions {
     /// The defaults, as a constant.
     pub const DEFAULT: Self = Self {
-        max_iter: CEM_MAX_ITER,
-        tol: CEM_TOL,
+        max_iter: 20,
+        tol: 1e-6,
         reflect_interior: true,
     };
 

@@ -1,9 +1,9 @@
-//! The one error type of the disk solvers.
+//! The one error type of the disk solvers (the disk map and the disk with circular holes).
 
-use conformap_mesh::Topology;
+use conformap_mesh::{MeshError, Topology};
 use conformap_operators::OperatorError;
 
-/// Why a disk map could not be computed.
+/// Why a disk map (or a disk with circular holes) could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DiskError {
@@ -74,5 +74,42 @@ pub enum DiskError {
         held_gaps: usize,
         /// The last floor tried, radians.
         floor: f64,
+    },
+    /// The mesh is not a connected genus-0 surface with boundary, so no disk with circular
+    /// holes is conformally equivalent to it. Fix: closed genus-0 meshes map to the sphere;
+    /// higher-genus ones need cutting (or the global 1-form map); split several components.
+    #[error(
+        "a disk with circular holes needs a connected genus-0 surface with at least one \
+         boundary loop, but the mesh is {found}"
+    )]
+    NotGenusZero {
+        /// What the mesh is.
+        found: Topology,
+    },
+    /// The requested outer loop does not exist. Fix: loops are numbered from 0 in the order
+    /// of `conformap info` (by smallest vertex).
+    #[error("outer loop {index} does not exist: the mesh has {loops} boundary loops")]
+    OuterLoopOutOfRange {
+        /// The requested loop.
+        index: usize,
+        /// Number of loops.
+        loops: usize,
+    },
+    /// Filling the holes of the input surface with centroid fans (the first step of the
+    /// disk with circular holes) gave an invalid mesh (a fan triangle is degenerate: a flat
+    /// loop whose centroid lies on one of its edges).
+    #[error("filling the holes failed: {0}")]
+    Fill(#[from] MeshError),
+    /// No point inside a hole's current image was found to invert about (Koebe iteration):
+    /// the loop's image is not a simple polygon (the previous map folded it).
+    #[error(
+        "the image of boundary loop {loop_index} is not a simple closed curve (sweep {sweep}); \
+         the previous map folded it"
+    )]
+    LoopNotSimple {
+        /// The loop.
+        loop_index: usize,
+        /// The sweep (0 = the first disk map).
+        sweep: usize,
     },
 }

@@ -63,24 +63,14 @@ impl LaplacianKind {
     }
 }
 
-/// Interior vertices from which [`FactorOrdering::Auto`] orders `L_II` by nested
-/// dissection rather than AMD: 200,000.
-///
-/// Counted on the generated meshes of `docs/benchmarks.md` (`ordering_probe`): from
-/// 250k interior vertices nested dissection needs fewer factor flops than AMD on the
-/// square (2.9 against 3.1 Gflop at 250k, 7.7 against 9.7 at 500k, 23 against 36 at 1M),
-/// about as many on the disk (8.3 against 8.3 at 500k, 23.9 against 24.1 at 1M), half as
-/// many on the cut spheres (14 against 29 at 500k, 40 against 99 at 1M), and on all of
-/// them 25–50 % fewer for forming the Schur complement; below 130k it needs more on the
-/// square and on hand.obj (0.95 against 0.87 Gflop at 126k, 0.43 against 0.31 on hand).
-pub const NESTED_DISSECTION_MIN_INTERIOR: usize = 200_000;
-
 /// The fill-reducing ordering of the factorization of `L_II`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum FactorOrdering {
-    /// Nested dissection from [`NESTED_DISSECTION_MIN_INTERIOR`] interior vertices, AMD
-    /// below (default).
+    /// The factorization facade's own policy ([`conformap_operators::Ordering::Auto`]:
+    /// nested dissection from
+    /// [`conformap_operators::Ordering::NESTED_DISSECTION_MIN_DIM`] interior vertices, AMD
+    /// below; default).
     #[default]
     Auto,
     /// Approximate minimum degree ([`conformap_operators::Ordering::Amd`]).
@@ -93,12 +83,12 @@ impl FactorOrdering {
     /// The ordering used for `interior` interior vertices.
     ///
     /// ```
-    /// use conformap_disk::{FactorOrdering, NESTED_DISSECTION_MIN_INTERIOR};
+    /// use conformap_disk::FactorOrdering;
     /// use conformap_operators::Ordering;
     ///
     /// let auto = FactorOrdering::Auto;
     /// assert_eq!(auto.resolve(130_000), Ordering::Amd);
-    /// assert_eq!(auto.resolve(NESTED_DISSECTION_MIN_INTERIOR), Ordering::NestedDissection);
+    /// assert_eq!(auto.resolve(Ordering::NESTED_DISSECTION_MIN_DIM), Ordering::NestedDissection);
     /// assert_eq!(FactorOrdering::Amd.resolve(1 << 20), Ordering::Amd);
     /// assert_eq!("nd".parse::<FactorOrdering>(), Ok(FactorOrdering::NestedDissection));
     /// assert!("metis".parse::<FactorOrdering>().is_err());
@@ -108,8 +98,7 @@ impl FactorOrdering {
         match self {
             Self::Amd => Ordering::Amd,
             Self::NestedDissection => Ordering::NestedDissection,
-            _ if interior >= NESTED_DISSECTION_MIN_INTERIOR => Ordering::NestedDissection,
-            _ => Ordering::Amd,
+            _ => Ordering::Auto.resolve(interior),
         }
     }
 
@@ -233,7 +222,9 @@ impl GuardedExtension {
     }
 }
 
-/// Faces whose image has non-positive signed area: their number and the first one.
+/// Faces whose image has non-positive signed area: their number and the first one (the one
+/// fold count of the crate: CCEM's final check, the guarded extension, unfolding and the
+/// Koebe polish all use it).
 pub(crate) fn count_flipped(mesh: &TriMesh, f: &[Complex64]) -> (usize, Option<usize>) {
     let mut count = 0;
     let mut first = None;

@@ -38,69 +38,37 @@
 
 mod angles;
 mod ccem;
-mod ccem_options;
-#[cfg(test)]
-mod ccem_tests;
 mod cem;
-mod circle_fit;
-mod circle_newton;
-mod circle_polish;
-mod descent;
-mod energy;
 mod error;
 mod harmonic;
-mod hessian;
-mod initial;
+pub mod initial;
 mod koebe;
-mod koebe_options;
-mod koebe_polish;
-mod koebe_report;
-mod koebe_step;
 mod laplacian_choice;
-mod line_search;
+mod memory;
 mod method;
-mod mobius_align;
 mod problem;
-mod qn;
 mod report;
-mod schur;
-#[cfg(test)]
-mod speed_tests;
 mod unfold;
 
 #[doc(hidden)]
 pub mod doc_support;
 
-pub use ccem::{ccem, GAP_FLOOR_MAX, GAP_FLOOR_STEP};
-pub use ccem_options::{
-    CcemOptions, CcemStart, CcemVariant, CCEM_BANDED_HESSIAN_MIN_NB, CCEM_GAMMA1, CCEM_GAMMA2,
-    CCEM_MAX_ITER, CCEM_MAX_LINE_EVALS, CCEM_MIN_GAP, CCEM_QN_MEMORY, CCEM_RHO, CCEM_TOL,
+pub use ccem::{
+    ccem, BoundaryReport, CcemOptions, CcemStages, CcemStart, CcemVariant, LineSearchReport,
+    SchurMode, SchurReport, StepRecord,
 };
-pub use cem::{cem, interior_residual, CemOptions, CEM_MAX_ITER, CEM_TOL};
+pub use cem::{cem, interior_residual, CemOptions};
 pub use error::DiskError;
 pub use harmonic::harmonic_arc_length;
-pub use initial::{
-    angenent_boundary, angenent_rhs, arc_length_boundary, centralize_normalize, centre_face,
-    InitialBoundary,
-};
-pub use koebe::koebe;
-pub use koebe_options::{
-    KoebeError, KoebeOptions, KOEBE_MAX_SWEEPS, KOEBE_NEWTON_MAX_ITER, KOEBE_NEWTON_STEP_TOL,
-    KOEBE_TOL, KOEBE_TOL_WITHOUT_POLISH,
-};
-pub use koebe_polish::POLISH_MAX_ITER;
-pub use koebe_report::{
-    CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
+pub use koebe::{
+    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
+    LoopCircleFit, PolishReport,
 };
 pub use laplacian_choice::{
     FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
-    NESTED_DISSECTION_MIN_INTERIOR,
 };
+pub use memory::{koebe_peak_bytes, CEM_EXTRA_BYTES_PER_VERTEX};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
 pub use problem::{polygon_area, polygon_area_of, DiskProblem};
-pub use report::{
-    BoundaryReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport, StepRecord,
-    Timings,
-};
-pub use schur::{SchurMode, DENSE_SCHUR_MAX_BYTES, EXPECTED_SCHUR_PRODUCTS};
-pub use unfold::{unfold_disk_map, Unfolded, UNFOLD_MIN_GAP};
+pub use report::{DiskMap, SolverReport, Timings};
+pub use unfold::{unfold_disk_map, Unfolded};

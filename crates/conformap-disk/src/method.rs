@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 
-use crate::ccem_options::{CcemOptions, CcemVariant};
+use crate::ccem::{CcemOptions, CcemVariant};
 use crate::cem::interior_residual;
 use crate::{
     ccem, cem, harmonic_arc_length, unfold_disk_map, CemOptions, DiskError, DiskMap, DiskProblem,

@@ -24,15 +24,10 @@ use std::f64::consts::{PI, TAU};
 use num_complex::Complex64;
 
 use crate::angles::{largest_gap, project_to_floor};
+use crate::angles::{GAP_FLOOR_MAX, GAP_FLOOR_STEP, UNFOLD_MIN_GAP};
 use crate::laplacian_choice::{count_flipped, InteriorOperator, LaplacianKind};
 use crate::problem::DiskProblem;
-use crate::{DiskError, GAP_FLOOR_MAX, GAP_FLOOR_STEP};
-
-/// Default first floor on the angle between consecutive boundary vertices when the
-/// boundary has to be put back in order: `1e-13` radians, about 140 units in the last place
-/// of an angle near `2π`, the smallest gap f64 angles resolve with margin (the same value
-/// as CCEM's `min_gap`).
-pub const UNFOLD_MIN_GAP: f64 = 1e-13;
+use crate::DiskError;
 
 /// What [`unfold_disk_map`] did.
 #[derive(Debug, Clone, PartialEq)]
@@ -82,8 +77,8 @@ impl Unfolded {
 /// unchanged if no face folds; else the interior re-solved by
 /// [`DiskProblem::guarded_extension`]; if faces still fold, the boundary angles replaced
 /// by the nearest ones (least squares) in cyclic order with every gap at least
-/// [`UNFOLD_MIN_GAP`], raising that floor ×[`GAP_FLOOR_STEP`] while faces fold, up to
-/// [`GAP_FLOOR_MAX`] or a tenth of the mean gap `2π / n_B`.
+/// `1e-13` rad, raising that floor ×1000 while faces fold, up to
+/// `1e-4` rad or a tenth of the mean gap `2π / n_B`.
 ///
 /// # Errors
 /// [`DiskError::Folded`] if no floor gives a flip-free map (or the boundary does not wind

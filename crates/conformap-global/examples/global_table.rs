@@ -5,15 +5,15 @@
 //! cargo run --release -p conformap-global --example global_table -- sphere  # class c
 //! cargo run --release -p conformap-global --example global_table -- disk    # class a: CEM + Möbius
 //! cargo run --release -p conformap-global --example global_table -- cover   # double cover vs CEM
+//! cargo run --release -p conformap-global --example global_table -- methods # all disk methods
 //! ```
 //! Extra arguments after the mode replace the default mesh list.
 
 use std::time::Instant;
 
 use conformap_global::{
-    double_cover_disk_map, optimize_disk_mobius, optimize_sphere_mobius,
-    planar_cross_ratio_distortion, sphere_map, sphere_metrics, DiskAutomorphism, MobiusObjective,
-    MobiusOptions, SphereOptions,
+    double_cover_disk_map, optimize_disk_mobius, optimize_sphere_mobius, sphere_map,
+    sphere_metrics, DiskAutomorphism, MobiusObjective, MobiusOptions, SphereOptions,
 };
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use num_complex::Complex64;
@@ -56,7 +56,8 @@ fn main() -> Res {
         "sphere" => sphere_table(&list(&CLASS_C)),
         "disk" => disk_table(&list(&CLASS_A)),
         "cover" => cover_table(&list(&COVER)),
-        other => Err(format!("unknown mode {other}: sphere, disk or cover").into()),
+        "methods" => methods_table(&list(&CLASS_A)),
+        other => Err(format!("unknown mode {other}: sphere, disk, cover or methods").into()),
     }
 }
 
@@ -133,8 +134,8 @@ fn disk_table(names: &[String]) -> Res {
         let t_mob = t.elapsed().as_secs_f64();
         let a = planar_map_metrics(&mesh, &cem.map, &MetricsOptions::default())?;
         let b = planar_map_metrics(&mesh, &best.map, &MetricsOptions::default())?;
-        let ca = planar_cross_ratio_distortion(&mesh, &cem.map)?;
-        let cb = planar_cross_ratio_distortion(&mesh, &best.map)?;
+        let ca = conformap_metrics::cross_ratio_distortion(&mesh, &cem.map)?;
+        let cb = conformap_metrics::cross_ratio_distortion(&mesh, &best.map)?;
         println!(
             "| {name} | {} | {:.4e} → {:.4e} | {:.3} | {:.3} → {:.3} | {:.6} / {:.6} | {} / {} | {:.2} s |",
             mesh.num_vertices(),
@@ -224,3 +225,52 @@ fn cover_table(names: &[String]) -> Res {
     }
     Ok(())
 }
+
+/// The double-cover disk map beside `ccem-qn`, `cem` and `harmonic` (each from the mesh:
+/// problem setup included in its time), judged by the same metrics.
+fn methods_table(names: &[String]) -> Res {
+    use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
+    println!("| mesh | V | method | E_C | mean angle dist. (°) | flips | time (ms) |");
+    println!("|---|---|---|---|---|---|---|");
+    for name in names {
+        let Some(mesh) = read(name) else { continue };
+        let mut rows: Vec<MethodRow> = vec![];
+        for method in [DiskMethod::CcemQn, DiskMethod::Cem, DiskMethod::Harmonic] {
+            let t = Instant::now();
+            let out = compute_disk_map(&mesh, method, &DiskOptions::DEFAULT);
+            let ms = t.elapsed().as_secs_f64() * 1e3;
+            rows.push((
+                method.to_string(),
+                out.map(|m| (m.map, ms)).map_err(|e| e.to_string()),
+            ));
+        }
+        let t = Instant::now();
+        let dc = double_cover_disk_map(&mesh, &SphereOptions::DEFAULT);
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        rows.push((
+            "double-cover".to_string(),
+            dc.map(|d| (d.map, ms)).map_err(|e| e.to_string()),
+        ));
+        for (k, (method, out)) in rows.into_iter().enumerate() {
+            let head = if k == 0 {
+                format!("{name} | {}", mesh.num_vertices())
+            } else {
+                " | ".to_string()
+            };
+            match out {
+                Ok((map, ms)) => {
+                    let m = planar_map_metrics(&mesh, &map, &MetricsOptions::default())?;
+                    println!(
+                        "| {head} | {method} | {:.4e} | {:.3} | {} | {:.0} |",
+                        m.conformal_energy, m.angle_distortion_deg.mean, m.flipped_faces, ms
+                    );
+                }
+                Err(e) => println!("| {head} | {method} | failed: {e} | | | |"),
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One method's result on a mesh: its name, and the map with its time (ms) or the error.
+type MethodRow = (String, Result<(Vec<Complex64>, f64), String>);

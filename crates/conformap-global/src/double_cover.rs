@@ -67,11 +67,37 @@ pub fn double_cover(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
             found,
         });
     }
+    build_double_cover(mesh)
+}
+
+/// The double covering of any connected surface with boundary (genus `g`, `b ≥ 1` loops):
+/// two copies glued along all boundary loops, the second reversed — a closed surface of
+/// genus `2g + b − 1` (Jin et al. 2004, §3.1; the higher-genus route for surfaces with
+/// boundary). Same vertex and face numbering as [`double_cover`].
+///
+/// # Errors
+/// [`GlobalError::WrongTopology`] unless the mesh is connected with at least one boundary
+/// loop; [`GlobalError::Mesh`] if the covering fails validation.
+pub fn double_cover_surface(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
+    if mesh.num_components() != 1 || mesh.boundary_loops().is_empty() {
+        return Err(GlobalError::WrongTopology {
+            operation: "a double covering",
+            expected: "a connected surface with at least one boundary loop",
+            found: mesh.topology(),
+        });
+    }
+    build_double_cover(mesh)
+}
+
+/// Glues two copies of `mesh` along all its boundary loops.
+fn build_double_cover(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
     let (positions, faces, split_edges) = split_boundary_chords(mesh);
     let n = positions.len();
     let mut is_boundary = vec![false; n];
-    for &v in &mesh.boundary_loops()[0] {
-        is_boundary[v as usize] = true;
+    for l in mesh.boundary_loops() {
+        for &v in l {
+            is_boundary[v as usize] = true;
+        }
     }
     let mut copy = vec![0u32; n];
     let mut all_positions = positions.clone();

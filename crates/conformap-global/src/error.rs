@@ -97,4 +97,13 @@ pub enum GlobalError {
         /// What is required.
         reason: &'static str,
     },
+    /// The holomorphic 1-form basis is numerically degenerate (the wedge matrix of the
+    /// harmonic basis or the Gram matrix is singular, or a form integrates to zero). Fix: the
+    /// mesh is too coarse or its cotangent weights too badly conditioned; refine or remesh
+    /// the extremely thin triangles.
+    #[error("the 1-form basis is degenerate: {reason}")]
+    DegenerateFormBasis {
+        /// What was singular.
+        reason: &'static str,
+    },
 }

@@ -47,6 +47,7 @@
 mod double_cover;
 mod energy;
 mod error;
+mod forms;
 mod metrics;
 mod mobius;
 mod mobius_options;
@@ -63,16 +64,20 @@ mod stereo;
 pub mod doc_support;
 
 pub use double_cover::{
-    double_cover, double_cover_disk_map, DoubleCover, DoubleCoverDisk, DoubleCoverReport,
+    double_cover, double_cover_disk_map, double_cover_surface, DoubleCover, DoubleCoverDisk,
+    DoubleCoverReport,
 };
 pub use energy::{
     disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
     sphere_uniformity_energy, surface_shares,
 };
 pub use error::GlobalError;
+pub use forms::{
+    global_map, reduce_modulus, ConjugateMethod, GlobalMap, GlobalMapOptions, GlobalTimings,
+    LayoutMetrics, Zero, ZeroReport, MODULUS_MAX_STEPS,
+};
 pub use metrics::{
-    planar_cross_ratio_distortion, sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics,
-    SPHERE_BELTRAMI_CAP,
+    sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,
 };
 pub use mobius::{
     boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,
@@ -89,12 +94,12 @@ pub use report::{SphereReport, StageRecord, Timings};
 pub use source::sphere_source_face;
 pub use sphere::{
     sphere_map, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION, SPHERE_MAX_CORRECTIONS,
-    SPHERE_MIN_GAIN,
+    SPHERE_MIN_GAIN, SPHERE_SOLVE_RESIDUAL_TOL,
 };
 pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
 pub use stereo::{
-    equirectangular_uv, inverse_stereographic, inverse_stereographic_south, stereographic,
-    stereographic_south,
+    equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
+    inverse_stereographic_south, stereographic, stereographic_south,
 };
 
 /// The README's example, compiled and run as a doctest.

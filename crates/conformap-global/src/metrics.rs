@@ -1,5 +1,5 @@
-//! Quality metrics of a sphere map, and the Möbius-invariant length cross-ratio distortion of
-//! sphere and planar maps.
+//! Quality metrics of a sphere map, with its Möbius-invariant length cross-ratio distortion
+//! (the planar one is `conformap_metrics::cross_ratio_distortion`).
 
 use conformap_mesh::TriMesh;
 use conformap_operators::{face_areas, face_points, triangle_angles};
@@ -119,7 +119,9 @@ pub fn sphere_metrics(mesh: &TriMesh, points: &[[f64; 3]]) -> Result<SphereMetri
         .iter()
         .map(|&f| ((image_areas[f] / total_image) / (mesh_areas[f] / total_mesh)).ln())
         .collect();
-    let cross = cross_ratio_logs(mesh, |a, b| norm(crate::stereo::sub(points[a], points[b])));
+    let cross = conformap_metrics::cross_ratio_logs(mesh, |a, b| {
+        norm(crate::stereo::sub(points[a], points[b]))
+    });
     Ok(SphereMetrics {
         radius_residual_max,
         flipped_faces: flipped,
@@ -170,40 +172,12 @@ pub(crate) fn beltrami_abs(p: [[f64; 3]; 3], f: [Complex64; 3]) -> f64 {
     }
 }
 
-/// `log c' − log c` per interior edge, where for the edge `(i, j)` with opposite vertices `k`
-/// (left face) and `l` (right face) `c = (ℓ_il ℓ_jk)/(ℓ_lj ℓ_ki)` from the 3D edge lengths
-/// and `c'` the same with `image_len`. Edges with a zero or non-finite image ratio are
-/// skipped.
-fn cross_ratio_logs(mesh: &TriMesh, image_len: impl Fn(usize, usize) -> f64) -> Vec<f64> {
-    let pos = mesh.positions();
-    let len3 = |a: usize, b: usize| norm(crate::stereo::sub(pos[a], pos[b]));
-    let faces = mesh.faces();
-    let opp = mesh.opposite_halfedges();
-    let mut out = Vec::with_capacity(opp.len() / 2);
-    for (h, &o) in opp.iter().enumerate() {
-        if o == conformap_mesh::NO_HALFEDGE || (o as usize) < h {
-            continue;
-        }
-        let (f, k) = (h / 3, h % 3);
-        let (g, m) = (o as usize / 3, o as usize % 3);
-        let i = faces[f][k] as usize;
-        let j = faces[f][(k + 1) % 3] as usize;
-        let kk = faces[f][(k + 2) % 3] as usize;
-        let l = faces[g][(m + 2) % 3] as usize;
-        let c = (len3(i, l) * len3(j, kk)) / (len3(l, j) * len3(kk, i));
-        let ci = (image_len(i, l) * image_len(j, kk)) / (image_len(l, j) * image_len(kk, i));
-        if ci > 0.0 && ci.is_finite() {
-            out.push(ci.ln() - c.ln());
-        }
-    }
-    out
-}
-
 /// Möbius-invariant conformality of a sphere map: per interior edge `|log(c'/c)|` of the
 /// length cross-ratios (chordal lengths on the sphere). A Möbius map scales chordal distances
 /// by `|φ(x) − φ(y)| = |x − y| √(λ(x) λ(y))`, which cancels in every cross-ratio, so this
 /// metric is exactly unchanged by Möbius transformations — unlike corner angles of the chord
-/// triangles, which change by `O(h |∇ log λ|)`.
+/// triangles, which change by `O(h |∇ log λ|)`. The planar counterpart is
+/// [`conformap_metrics::cross_ratio_distortion`].
 ///
 /// # Errors
 /// [`GlobalError::MapLength`].
@@ -212,22 +186,8 @@ pub fn sphere_cross_ratio_distortion(
     points: &[[f64; 3]],
 ) -> Result<AbsLogStats, GlobalError> {
     check_len(mesh, points.len())?;
-    Ok(abs_log_stats(&cross_ratio_logs(mesh, |a, b| {
-        norm(crate::stereo::sub(points[a], points[b]))
-    })))
-}
-
-/// As [`sphere_cross_ratio_distortion`] for a planar map (`|μ(z) − μ(w)| = |z − w| /
-/// (|cz + d| |cw + d|)` for a Möbius map of the plane, so again exactly invariant).
-///
-/// # Errors
-/// [`GlobalError::MapLength`].
-pub fn planar_cross_ratio_distortion(
-    mesh: &TriMesh,
-    map: &[Complex64],
-) -> Result<AbsLogStats, GlobalError> {
-    check_len(mesh, map.len())?;
-    Ok(abs_log_stats(&cross_ratio_logs(mesh, |a, b| {
-        (map[a] - map[b]).norm()
-    })))
+    Ok(abs_log_stats(&conformap_metrics::cross_ratio_logs(
+        mesh,
+        |a, b| norm(crate::stereo::sub(points[a], points[b])),
+    )))
 }

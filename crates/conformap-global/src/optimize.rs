@@ -93,6 +93,10 @@ pub struct MobiusReport {
     pub evaluations: usize,
     /// Whether the best start converged.
     pub converged: bool,
+    /// The optimization's residual: the norm of the objective's gradient in the boost
+    /// vector at the returned optimum (its tangential part where the boost length is
+    /// capped).
+    pub gradient_norm: f64,
     /// Wall-clock milliseconds.
     pub time_ms: f64,
     /// `Some(t)` when the optimal boost would have inverted faces of a disk map that
@@ -228,7 +232,7 @@ fn run_starts(
     radius: f64,
     options: &MobiusOptions,
     emphasize: bool,
-) -> (Vec<f64>, usize, Vec<StartRecord>, usize, bool) {
+) -> (Vec<f64>, usize, Vec<StartRecord>, usize, bool, f64) {
     let start_r = options.start_radius.min(0.5 * radius);
     let mut records: Vec<StartRecord> = Vec::new();
     let mut best: Option<(f64, Vec<f64>, usize, bool)> = None;
@@ -265,7 +269,22 @@ fn run_starts(
         }
     }
     let (_, x, k, conv) = best.unwrap_or((0.0, vec![0.0; dim], 0, false));
-    (x, k, records, evaluations, conv)
+    let residual = tangential_gradient_norm(eval, &x, radius);
+    (x, k, records, evaluations, conv, residual)
+}
+
+/// `|∇f(x)|`, without its radial part where `x` lies on the ball's cap (there the optimum
+/// is constrained and only the tangential gradient vanishes): the optimization's residual.
+fn tangential_gradient_norm(eval: &EvalFn<'_>, x: &[f64], radius: f64) -> f64 {
+    let (_, mut g) = eval(x);
+    let len = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if len >= radius * (1.0 - 1e-9) && len > 0.0 {
+        let radial = g.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() / (len * len);
+        for (gi, xi) in g.iter_mut().zip(x) {
+            *gi -= radial * xi;
+        }
+    }
+    g.iter().map(|v| v * v).sum::<f64>().sqrt()
 }
 
 /// The Möbius transformation of the sphere that optimizes `objective` for the sphere map
@@ -313,7 +332,7 @@ pub fn optimize_sphere_mobius(
     };
     let target = prep.target();
     let eval = |x: &[f64]| prob.eval(x, target);
-    let (u, best_start, starts, evaluations, converged) =
+    let (u, best_start, starts, evaluations, converged, residual) =
         run_starts(&eval, 3, prep.radius, options, prep.mask.is_some());
     let moved: Vec<[f64; 3]> = prob.boosted(&u).into_iter().map(normalize).collect();
     let mobius = Mobius::boost([u[0], u[1], u[2]]);
@@ -329,6 +348,10 @@ pub fn optimize_sphere_mobius(
         (starts, best_start, evaluations, converged),
         t0,
     );
+    let report = MobiusReport {
+        gradient_norm: residual,
+        ..report
+    };
     Ok(SphereMobius {
         points: moved,
         mobius,
@@ -384,12 +407,17 @@ pub fn optimize_disk_mobius(
     };
     let target = prep.target();
     let eval = |x: &[f64]| prob.eval(x, target);
-    let (v, best_start, starts, evaluations, converged) =
+    let (v, best_start, starts, evaluations, converged, residual) =
         run_starts(&eval, 2, prep.radius, options, prep.mask.is_some());
     let (v, moved, flip_limit) = keep_orientation(mesh, map, &prob, v);
     let automorphism = DiskAutomorphism::from_vector([v[0], v[1]]);
     let areas_before = planar_face_areas(mesh, map);
     let areas_after = planar_face_areas(mesh, &moved);
+    // a boost shortened to keep the orientation is no longer the optimum: its own residual
+    let gradient_norm = match flip_limit {
+        Some(_) => tangential_gradient_norm(&eval, &v, prep.radius),
+        None => residual,
+    };
     let report = finish_report(
         objective,
         "disk",
@@ -402,6 +430,7 @@ pub fn optimize_disk_mobius(
     );
     let report = MobiusReport {
         flip_limited: flip_limit,
+        gradient_norm,
         ..report
     };
     Ok(DiskMobius {
@@ -501,6 +530,7 @@ fn finish_report(
         best_start,
         evaluations,
         converged,
+        gradient_norm: f64::NAN,
         time_ms: t0.elapsed().as_secs_f64() * 1e3,
         flip_limited: None,
     }

@@ -58,6 +58,22 @@ pub fn equirectangular_uv(p: [f64; 3]) -> [f64; 2] {
     [u, v]
 }
 
+/// The inverse of [`equirectangular_uv`]: the unit-sphere point of texture coordinates
+/// `(u, v)`.
+///
+/// # Examples
+/// ```
+/// use conformap_global::{equirectangular_uv, from_equirectangular_uv};
+/// let p = [0.48, -0.6, 0.64];
+/// let q = from_equirectangular_uv(equirectangular_uv(p));
+/// assert!((0..3).all(|k| (p[k] - q[k]).abs() < 1e-15));
+/// ```
+pub fn from_equirectangular_uv(uv: [f64; 2]) -> [f64; 3] {
+    let lon = std::f64::consts::TAU * uv[0] - std::f64::consts::PI;
+    let lat = std::f64::consts::PI * uv[1] - std::f64::consts::FRAC_PI_2;
+    [lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin()]
+}
+
 /// Homogeneous coordinates of `τ(p)`: `[x + iy : 1 − z]` in the southern hemisphere and the
 /// equal `[1 + z : x − iy]` in the northern one, so neither coordinate pair is tiny.
 #[inline]

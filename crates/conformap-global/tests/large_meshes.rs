@@ -5,8 +5,8 @@
 mod common;
 
 use conformap_global::{
-    optimize_disk_mobius, optimize_sphere_mobius, planar_cross_ratio_distortion, sphere_map,
-    sphere_metrics, MobiusObjective, MobiusOptions, SphereOptions,
+    optimize_disk_mobius, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
+    MobiusOptions, SphereOptions,
 };
 
 /// Mean chord-angle distortion bounds (degrees): the issue's 2° for david_head and brain
@@ -139,8 +139,8 @@ fn class_a_mobius_lowers_uniformity_of_cem_and_ccem() {
                 inverted(map),
                 r.flip_limited
             );
-            let a = planar_cross_ratio_distortion(&mesh, map).unwrap();
-            let b = planar_cross_ratio_distortion(&mesh, &best.map).unwrap();
+            let a = conformap_metrics::cross_ratio_distortion(&mesh, map).unwrap();
+            let b = conformap_metrics::cross_ratio_distortion(&mesh, &best.map).unwrap();
             eprintln!(
                 "{name} {method}: uniformity {:.4e} -> {:.4e}, cross-ratio mean change {:.1e}, \
                  flip limit {:?}",

@@ -4,8 +4,8 @@ mod common;
 
 use common::{norm, Lcg};
 use conformap_global::{
-    optimize_disk_mobius, optimize_sphere_mobius, planar_cross_ratio_distortion, sphere_metrics,
-    DiskAutomorphism, GlobalError, Mobius, MobiusObjective, MobiusOptions,
+    optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics, DiskAutomorphism, GlobalError,
+    Mobius, MobiusObjective, MobiusOptions,
 };
 use num_complex::Complex64;
 
@@ -107,10 +107,10 @@ fn mobius_maps_keep_cross_ratios_exactly() {
         .iter()
         .map(|p| Complex64::new(p[0], p[1]))
         .collect();
-    let c0 = planar_cross_ratio_distortion(&disk, &z).unwrap();
+    let c0 = conformap_metrics::cross_ratio_distortion(&disk, &z).unwrap();
     let a = DiskAutomorphism::from_vector([1.3, -0.4]);
     let w: Vec<Complex64> = z.iter().map(|&q| a.apply(q)).collect();
-    let c1 = planar_cross_ratio_distortion(&disk, &w).unwrap();
+    let c1 = conformap_metrics::cross_ratio_distortion(&disk, &w).unwrap();
     assert!(c0.max_abs < 1e-12 && c1.max_abs < 1e-9, "{c0:?} {c1:?}");
 }
 

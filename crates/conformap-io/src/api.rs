@@ -4,14 +4,12 @@ use std::path::Path;
 
 use conformap_mesh::TriMesh;
 
-use crate::atomic::write_atomically;
+use crate::atomic::{write_atomically, write_parts_atomically};
 use crate::error::{IoError, WriteProblem};
-use crate::gltffile::{encode_gltf, read_gltf};
+use crate::gltffile::encode_gltf;
 use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
-use crate::objfile::{encode_obj, encode_obj_with_uv, read_obj};
-
-/// The name errors use for data that did not come from a file.
-const MEMORY: &str = "<memory>";
+use crate::objfile::{encode_obj, encode_obj_with_uv};
+use crate::raw::{read_raw_mesh, read_raw_mesh_from_bytes};
 
 /// Reads a mesh from an `.obj`, `.gltf` or `.glb` file (chosen by extension).
 ///
@@ -33,19 +31,7 @@ const MEMORY: &str = "<memory>";
 /// # Ok::<(), conformap_io::IoError>(())
 /// ```
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, IoError> {
-    let path = path.as_ref();
-    let format = Format::from_path(path)?;
-    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    match format {
-        Format::Obj => read_obj(&bytes, path),
-        Format::Gltf | Format::Glb => {
-            let base = path.parent().unwrap_or(Path::new(""));
-            read_gltf(&bytes, path, Some(base), format)
-        }
-    }
+    read_raw_mesh(path)?.validate()
 }
 
 /// Reads a mesh from bytes already in memory (for tests and fuzzing). Errors name the
@@ -63,11 +49,7 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, IoError> {
 /// # Ok::<(), conformap_io::IoError>(())
 /// ```
 pub fn read_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<LoadedMesh, IoError> {
-    let path = Path::new(MEMORY);
-    match format {
-        Format::Obj => read_obj(bytes, path),
-        Format::Gltf | Format::Glb => read_gltf(bytes, path, None, format),
-    }
+    read_raw_mesh_from_bytes(bytes, format)?.validate()
 }
 
 /// Writes `mesh` with one texture coordinate per vertex (`uv[k]` belongs to vertex `k`),
@@ -104,18 +86,20 @@ pub fn write_mesh_with_uv(
         }));
     }
     check_finite(uv.iter().map(|t| t.as_slice())).map_err(bad)?;
-    let bytes = match format {
-        Format::Obj => encode_obj_with_uv(mesh.positions(), uv, mesh.faces()),
+    match format {
+        Format::Obj => {
+            let parts = encode_obj_with_uv(mesh.positions(), uv, mesh.faces());
+            write_parts_atomically(path, &parts)
+        }
         Format::Gltf | Format::Glb => {
             let binary = format == Format::Glb;
-            match file_layout(mesh, uv, source) {
+            let bytes = match file_layout(mesh, uv, source) {
                 Some((p, t, f)) => encode_gltf(binary, &p, Some(&t), f),
                 None => encode_gltf(binary, mesh.positions(), Some(uv), mesh.faces()),
-            }
-            .map_err(bad)?
+            };
+            write_atomically(path, &bytes.map_err(bad)?)
         }
-    };
-    write_atomically(path, &bytes)
+    }
 }
 
 /// Writes points and triangles with no texture coordinates: a flat map `(u, v, 0)`, points
@@ -157,13 +141,13 @@ pub fn write_flat(
         }
     }
     check_finite(points.iter().map(|p| p.as_slice())).map_err(bad)?;
-    let bytes = match format {
-        Format::Obj => encode_obj(points, faces),
+    match format {
+        Format::Obj => write_parts_atomically(path, &encode_obj(points, faces)),
         Format::Gltf | Format::Glb => {
-            encode_gltf(format == Format::Glb, points, None, faces).map_err(bad)?
+            let bytes = encode_gltf(format == Format::Glb, points, None, faces).map_err(bad)?;
+            write_atomically(path, &bytes)
         }
-    };
-    write_atomically(path, &bytes)
+    }
 }
 
 fn check_finite<'a>(rows: impl Iterator<Item = &'a [f64]>) -> Result<(), WriteProblem> {

@@ -16,10 +16,24 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// # Errors
 /// [`IoError::Write`] if the temporary file cannot be created, written or renamed.
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    write_parts_atomically(path, &[bytes])
+}
+
+/// [`write_atomically`] of the concatenation of `parts` (formatted in parallel blocks),
+/// without joining them in memory first: each part is one `write` of the file.
+///
+/// # Errors
+/// As [`write_atomically`].
+pub(crate) fn write_parts_atomically<B: AsRef<[u8]>>(
+    path: &Path,
+    parts: &[B],
+) -> Result<(), IoError> {
     let tmp = temp_sibling(path);
     let result = (|| {
         let mut file = fs::File::create(&tmp)?;
-        file.write_all(bytes)?;
+        for part in parts {
+            file.write_all(part.as_ref())?;
+        }
         file.sync_all()?;
         drop(file);
         fs::rename(&tmp, path)

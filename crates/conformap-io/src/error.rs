@@ -321,6 +321,22 @@ pub enum WriteProblem {
         /// The value.
         value: f64,
     },
+    /// A seamed map has not one triple of texture-coordinate indices per face.
+    CornerFaceCount {
+        /// Number of faces of the mesh.
+        expected: usize,
+        /// Number of index triples given.
+        found: usize,
+    },
+    /// A face corner refers to a texture coordinate that does not exist.
+    TexcoordIndex {
+        /// 0-based face.
+        face: usize,
+        /// The index found.
+        index: u32,
+        /// Number of texture coordinates.
+        count: usize,
+    },
     /// More data than the format can index (glTF byte lengths are u32 in GLB).
     TooLarge,
     /// No vertex or no triangle: glTF accessors cannot be empty.
@@ -346,6 +362,14 @@ impl fmt::Display for WriteProblem {
                 f,
                 "vertex {vertex} has a value that cannot be written ({value})"
             ),
+            Self::CornerFaceCount { expected, found } => write!(
+                f,
+                "{found} texture-coordinate triples for {expected} faces (need one per face)"
+            ),
+            Self::TexcoordIndex { face, index, count } => write!(
+                f,
+                "face {face} refers to texture coordinate {index}, but there are only {count}"
+            ),
             Self::TooLarge => write!(f, "the mesh is too large for the format"),
             Self::Empty => write!(f, "glTF needs at least one vertex and one triangle"),
         }
@@ -370,7 +394,8 @@ pub(crate) fn mesh_error_element(error: &MeshError) -> Option<Element> {
         | MeshError::RepeatedVertexInFace { face, .. }
         | MeshError::ZeroAreaFace { face, .. }
         | MeshError::DuplicateFace { face, .. }
-        | MeshError::InconsistentOrientation { face, .. } => Some(Element::Face(*face)),
+        | MeshError::InconsistentOrientation { face, .. }
+        | MeshError::NonOrientable { face, .. } => Some(Element::Face(*face)),
         MeshError::NonManifoldEdge { faces, .. } => {
             faces.get(2).or(faces.first()).map(|&f| Element::Face(f))
         }

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use conformap_mesh::TriMesh;
 
+use crate::corner_uv::CornerUv;
 use crate::error::{IoError, UvProblem};
 
 /// Marks a file vertex that no triangle uses in [`SourceInfo::weld_map`].
@@ -74,6 +75,11 @@ pub struct LoadedMesh {
     pub uv: Option<Vec<[f64; 2]>>,
     /// Why [`Self::uv`] is `None`; `None` when it is `Some`.
     pub uv_problem: Option<UvProblem>,
+    /// The texture coordinate of every face corner, when every corner has one: a seamed
+    /// map (OBJ `f v/vt` with a vertex under several `vt`, or glTF vertices split along
+    /// seams) as well as a per-vertex one. `None` when the file has none or some corner
+    /// lacks one (then [`Self::uv_problem`] says which).
+    pub corner_uv: Option<CornerUv>,
     /// Where the mesh came from and how its elements map to the file.
     pub source: SourceInfo,
 }

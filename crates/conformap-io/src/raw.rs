@@ -6,6 +6,7 @@ use std::path::Path;
 
 use conformap_mesh::{MeshError, TriMesh};
 
+use crate::corner_uv::CornerUv;
 use crate::error::{mesh_error_element, Element, IoError, Origin, UvProblem};
 use crate::gltffile::{face_origin, read_gltf_raw, vertex_origin, PrimRange};
 use crate::loaded::{Format, LoadedMesh, SourceInfo};
@@ -33,6 +34,9 @@ pub struct RawMesh {
     pub uv: Option<Vec<Option<[f64; 2]>>>,
     /// Why [`Self::uv`] is `None`; `None` when it is `Some`.
     pub uv_problem: Option<UvProblem>,
+    /// The texture coordinate of every face corner, when every corner has one (seamed maps
+    /// included); `None` when some corner has none.
+    pub corner_uv: Option<CornerUv>,
     /// Where the mesh came from and how its elements map to the file.
     pub source: SourceInfo,
     /// glTF: the primitive ranges and the file vertex of each welded vertex, to name an
@@ -65,8 +69,32 @@ impl RawMesh {
             faces,
             uv,
             uv_problem,
+            corner_uv: None,
             source,
             origins: origins.unwrap_or_default(),
+        }
+    }
+
+    /// Sets [`Self::corner_uv`].
+    pub(crate) fn with_corner_uv(mut self, corner_uv: Option<CornerUv>) -> Self {
+        self.corner_uv = corner_uv;
+        self
+    }
+
+    /// The file place of vertex `v` (this mesh's numbering).
+    pub(crate) fn vertex_place(&self, v: usize) -> Option<Origin> {
+        let at = MeshError::UnreferencedVertex {
+            vertex: v,
+            count: 1,
+        };
+        self.origin_of(&at)
+    }
+
+    /// After welding: welded vertex `c` is the former vertex `first[c]`.
+    pub(crate) fn reset_origins(&mut self, first: &[usize]) {
+        if !self.origins.first_file.is_empty() {
+            let old = std::mem::take(&mut self.origins.first_file);
+            self.origins.first_file = first.iter().map(|&i| old[i]).collect();
         }
     }
 
@@ -109,6 +137,7 @@ impl RawMesh {
             faces,
             uv,
             uv_problem,
+            corner_uv,
             source,
             origins,
         } = self;
@@ -128,6 +157,7 @@ impl RawMesh {
             mesh,
             uv,
             uv_problem,
+            corner_uv,
             source,
         })
     }

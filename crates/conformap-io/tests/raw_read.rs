@@ -10,7 +10,7 @@ use conformap_io::{
     read_mesh, read_mesh_from_bytes, read_raw_mesh, read_raw_mesh_from_bytes, Format, IoError,
     Origin,
 };
-use conformap_mesh::{repair, MeshError, RepairError, RepairOptions, Topology, TriMesh};
+use conformap_mesh::{repair, MeshError, RepairOptions, Topology, TriMesh};
 use serde_json::json;
 
 const BAD: &[&str] = &[
@@ -121,7 +121,7 @@ fn repairing_a_raw_read_and_naming_what_remains() {
 
     // the Möbius strip cannot be oriented: the error names input faces, and their lines
     let raw = read_raw_mesh(fixture("bad/mobius.obj")).unwrap();
-    let RepairError::NonOrientable { face, other, .. } =
+    let MeshError::NonOrientable { face, other, .. } =
         repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT).unwrap_err()
     else {
         panic!("expected NonOrientable")

@@ -111,6 +111,26 @@ pub enum MeshError {
         /// Edge end.
         b: u32,
     },
+    /// The surface is not orientable (a Möbius strip, a Klein bottle): walking from face
+    /// `other` and flipping faces to agree with their neighbours comes back to face `face`
+    /// with the opposite orientation across edge `(a, b)`, so no flip of faces can fix it
+    /// (found by [`crate::repair`]). Fix: cut the surface open along a seam through that
+    /// edge, or remove the twisted band.
+    #[error(
+        "the surface is not orientable: face {face} cannot agree with face {other} across \
+         edge ({a}, {b}) whichever faces are flipped (a Möbius-like twist); cut the surface \
+         open along a seam through that edge"
+    )]
+    NonOrientable {
+        /// 0-based input face where the walk found the conflict.
+        face: usize,
+        /// The neighbouring 0-based input face it conflicts with.
+        other: usize,
+        /// One end of the shared edge (input vertex).
+        a: u32,
+        /// The other end.
+        b: u32,
+    },
     /// The faces around a vertex form several fans (a "bowtie" vertex).
     #[error(
         "vertex {vertex} is non-manifold: its {faces} faces form more than one fan (bowtie); \
@@ -121,5 +141,18 @@ pub enum MeshError {
         vertex: usize,
         /// Number of faces around the vertex.
         faces: usize,
+    },
+    /// A topology computation (homology generators, cut graph) needs one connected closed
+    /// surface. Fix: close the boundary loops (or take the double covering of a surface with
+    /// boundary) and keep a single component.
+    #[error(
+        "a homology basis needs one connected closed surface, but the mesh has {components} \
+         component(s) and {boundaries} boundary loop(s)"
+    )]
+    NotClosedSurface {
+        /// Connected components.
+        components: usize,
+        /// Boundary loops.
+        boundaries: usize,
     },
 }

@@ -26,12 +26,18 @@ mod error;
 mod holes;
 mod repair;
 mod surgery;
+mod topology;
 mod trimesh;
 
 pub use error::MeshError;
 pub use holes::{centroid_fan_faces, fill_all_holes_except};
-pub use repair::{repair, RepairError, RepairLog, RepairOptions, Repaired, DROPPED};
+pub use repair::{repair, RepairLog, RepairOptions, Repaired, DROPPED};
 pub use surgery::{fill_holes, FilledMesh};
+#[doc(hidden)]
+pub use topology::doc_torus;
+pub use topology::{
+    cut_graph, cut_mesh, homology_basis, CutMesh, EdgeIndex, Generator, HomologyBasis,
+};
 pub use trimesh::{
     bbox_diagonal, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions, WellConditioned,
     DEGENERATE_AREA_REL, NO_HALFEDGE,

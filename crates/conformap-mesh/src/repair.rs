@@ -11,7 +11,7 @@
 //! 3. re-orient faces consistently: a breadth-first walk over manifold edges flips faces to
 //!    agree with their neighbours, and each edge-connected patch keeps the orientation of
 //!    the majority of its faces (ties: that of its lowest face). A surface on which no
-//!    choice agrees everywhere (a Möbius strip) is a [`RepairError::NonOrientable`];
+//!    choice agrees everywhere (a Möbius strip) is a [`MeshError::NonOrientable`];
 //! 4. drop vertices that no remaining face uses; the others keep their relative order, so
 //!    repaired vertex `k` is the `k`-th kept input vertex.
 //!
@@ -95,37 +95,6 @@ impl Default for RepairOptions {
     }
 }
 
-/// Why [`repair`] could not run.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum RepairError {
-    /// A defect no repair touches and that keeps the repairs from running (no vertices or
-    /// faces, an index out of range, a face using a vertex twice, too many vertices), with
-    /// input numbering. Fix: as the inner error says.
-    #[error(transparent)]
-    Invalid(#[from] MeshError),
-    /// The surface is not orientable (a Möbius strip, a Klein bottle): walking from face
-    /// `other` and flipping faces to agree with their neighbours comes back to face `face`
-    /// with the opposite orientation across edge `(a, b)`. No flip of faces can fix this.
-    /// Fix: cut the surface open along a seam through that edge, or remove the twisted
-    /// band.
-    #[error(
-        "the surface is not orientable: face {face} cannot agree with face {other} across \
-         edge ({a}, {b}) whichever faces are flipped (a Möbius-like twist); cut the surface \
-         open along a seam through that edge"
-    )]
-    NonOrientable {
-        /// 0-based input face where the walk found the conflict.
-        face: usize,
-        /// The neighbouring 0-based input face it conflicts with.
-        other: usize,
-        /// One end of the shared edge (input vertex).
-        a: u32,
-        /// The other end.
-        b: u32,
-    },
-}
-
 /// What [`repair`] did, and how the repaired mesh relates to the input.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
@@ -207,7 +176,12 @@ impl RepairLog {
         let f = |f: usize| self.face_to_input.get(f).map_or(f, |&i| i as usize);
         use MeshError as E;
         match error {
-            E::NoVertices | E::NoFaces { .. } | E::TooManyVertices { .. } => error,
+            E::NoVertices
+            | E::NoFaces { .. }
+            | E::TooManyVertices { .. }
+            | E::NotClosedSurface { .. }
+            // the repair reports it in input numbering already
+            | E::NonOrientable { .. } => error,
             E::NonFiniteCoordinate {
                 vertex,
                 axis,
@@ -285,9 +259,10 @@ pub struct Repaired {
 /// coordinates) are left for validation to report.
 ///
 /// # Errors
-/// [`RepairError::Invalid`] for no vertices or faces, too many vertices, an index out of
-/// range or a face using a vertex twice (input numbering);
-/// [`RepairError::NonOrientable`] when orienting and the surface has a twist.
+/// The [`MeshError`] of a defect no repair touches and that keeps the repairs from running:
+/// no vertices or faces, too many vertices, an index out of range or a face using a vertex
+/// twice (input numbering);
+/// [`MeshError::NonOrientable`] when orienting and the surface has a twist.
 ///
 /// # Examples
 /// ```
@@ -310,7 +285,7 @@ pub fn repair(
     positions: &[[f64; 3]],
     faces: &[[u32; 3]],
     options: &RepairOptions,
-) -> Result<Repaired, RepairError> {
+) -> Result<Repaired, MeshError> {
     check_preconditions(positions.len(), faces)?;
     let n = positions.len();
     let mut keep = vec![true; faces.len()];
@@ -337,7 +312,7 @@ pub fn repair(
     let mut kept: Vec<[u32; 3]> = face_to_input.iter().map(|&f| faces[f as usize]).collect();
     let flipped_faces = if options.orient {
         orient(&mut kept).map_err(|e| match e {
-            RepairError::NonOrientable { face, other, a, b } => RepairError::NonOrientable {
+            MeshError::NonOrientable { face, other, a, b } => MeshError::NonOrientable {
                 face: face_to_input[face] as usize,
                 other: face_to_input[other] as usize,
                 a,
@@ -540,7 +515,7 @@ fn manifold_neighbours(faces: &[[u32; 3]]) -> Neighbours {
 
 /// Flips faces so that neighbours over manifold edges agree (each patch keeps its majority
 /// orientation); returns the number flipped. Face numbers in errors are indices of `faces`.
-fn orient(faces: &mut [[u32; 3]]) -> Result<usize, RepairError> {
+fn orient(faces: &mut [[u32; 3]]) -> Result<usize, MeshError> {
     let nb = manifold_neighbours(faces);
     let mut flip: Vec<Option<bool>> = vec![None; faces.len()];
     let mut queue = VecDeque::new();
@@ -566,7 +541,7 @@ fn orient(faces: &mut [[u32; 3]]) -> Result<usize, RepairError> {
                         queue.push_back(h);
                     }
                     Some(have) if have != want => {
-                        return Err(RepairError::NonOrientable {
+                        return Err(MeshError::NonOrientable {
                             face: h,
                             other: g,
                             a: faces[g][k],

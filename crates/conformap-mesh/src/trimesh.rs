@@ -99,7 +99,7 @@ impl TriMesh {
         }
         check_coordinates(&positions)?;
         check_faces(&positions, &faces, options)?;
-        let opposite = match_halfedges(&faces)?;
+        let opposite = match_halfedges(n, &faces)?;
         let (is_boundary, boundary_loops) = check_fans_and_loops(n, &faces, &opposite)?;
         let edge_count = opposite
             .iter()
@@ -462,23 +462,25 @@ fn check_faces(
         let count = referenced.iter().filter(|r| !**r).count();
         return Err(MeshError::UnreferencedVertex { vertex, count });
     }
-    // duplicate faces: same vertex set, whatever the order
-    let mut keyed: Vec<([u32; 3], u32)> = faces
-        .iter()
-        .enumerate()
-        .map(|(i, f)| {
+    // duplicate faces: same vertex set, whatever the order; grouped by smallest vertex
+    let (sorted, offsets) = sort_by_bucket(
+        n,
+        faces.len(),
+        faces.iter().enumerate().map(|(i, f)| {
             let mut k = *f;
             k.sort_unstable();
-            (k, i as u32)
-        })
-        .collect();
-    keyed.sort_unstable();
+            let rest = (u128::from(k[1]) << 64) | (u128::from(k[2]) << 32) | i as u128;
+            (k[0], rest)
+        }),
+    );
     let mut dup: Option<(usize, usize)> = None;
-    for w in keyed.windows(2) {
-        if w[0].0 == w[1].0 {
-            let cand = (w[1].1 as usize, w[0].1 as usize);
-            if dup.is_none_or(|d| cand.0 < d.0) {
-                dup = Some(cand);
+    for bucket in offsets.windows(2) {
+        for w in sorted[bucket[0]..bucket[1]].windows(2) {
+            if w[0] >> 32 == w[1] >> 32 {
+                let cand = ((w[1] as u32) as usize, (w[0] as u32) as usize);
+                if dup.is_none_or(|d| cand.0 < d.0) {
+                    dup = Some(cand);
+                }
             }
         }
     }
@@ -488,73 +490,100 @@ fn check_faces(
     Ok(())
 }
 
-/// Pairs half-edges into opposites; rejects non-manifold edges and inconsistent orientation.
-fn match_halfedges(faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
-    let nh = faces.len() * 3;
-    let mut keys: Vec<(u64, u32)> = Vec::with_capacity(nh);
-    for (f, tri) in faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-            keys.push((key, (3 * f + k) as u32));
-        }
+/// Sorts `(bucket, rest)` items by bucket (a counting sort: buckets are vertex indices
+/// below `n`) and then by `rest` within each bucket, which orders them exactly as a full
+/// sort of `(bucket, rest)` would, in linear time plus sorts of a few items each. Returns
+/// the `rest` values and the bucket offsets (`n + 1`).
+fn sort_by_bucket<T: Ord + Copy + Default>(
+    n: usize,
+    len: usize,
+    items: impl Iterator<Item = (u32, T)> + Clone,
+) -> (Vec<T>, Vec<usize>) {
+    let mut offsets = vec![0usize; n + 1];
+    for (b, _) in items.clone() {
+        offsets[b as usize + 1] += 1;
     }
-    keys.sort_unstable();
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut sorted = vec![T::default(); len];
+    for (b, rest) in items {
+        sorted[fill[b as usize]] = rest;
+        fill[b as usize] += 1;
+    }
+    for w in offsets.windows(2) {
+        sorted[w[0]..w[1]].sort_unstable();
+    }
+    (sorted, offsets)
+}
+
+/// Pairs half-edges into opposites; rejects non-manifold edges and inconsistent orientation.
+///
+/// The half-edges are grouped by their undirected edge `(min, max)` in the order of a sort
+/// by `(min, max, half-edge)` (see [`sort_by_bucket`]); the first error in that order
+/// wins as described below.
+fn match_halfedges(n: usize, faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
+    let nh = faces.len() * 3;
+    // bucket: the smaller vertex; rest: the larger vertex << 32 | half-edge
+    let (keys, offsets) = sort_by_bucket(
+        n,
+        nh,
+        faces.iter().enumerate().flat_map(|(f, tri)| {
+            (0..3).map(move |k| {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let rest = (u64::from(a.max(b)) << 32) | (3 * f + k) as u64;
+                (a.min(b), rest)
+            })
+        }),
+    );
     let mut opposite = vec![NO_HALFEDGE; nh];
-    let mut i = 0;
     let mut first_error: Option<(usize, MeshError)> = None;
-    while i < keys.len() {
-        let mut j = i + 1;
-        while j < keys.len() && keys[j].0 == keys[i].0 {
-            j += 1;
-        }
-        let a = (keys[i].0 >> 32) as u32;
-        let b = keys[i].0 as u32;
-        match j - i {
-            1 => {}
-            2 => {
-                let (h0, h1) = (keys[i].1 as usize, keys[i + 1].1 as usize);
-                let start = |h: usize| faces[h / 3][h % 3];
-                if start(h0) == start(h1) {
-                    let e = MeshError::InconsistentOrientation {
-                        face: h1 / 3,
-                        other: h0 / 3,
-                        a: start(h0),
-                        b: faces[h0 / 3][(h0 % 3 + 1) % 3],
-                    };
-                    if first_error.as_ref().is_none_or(|(f, _)| h1 / 3 < *f) {
-                        first_error = Some((h1 / 3, e));
+    for (a, bucket) in offsets.windows(2).enumerate() {
+        let a = a as u32;
+        for run in keys[bucket[0]..bucket[1]].chunk_by(|x, y| x >> 32 == y >> 32) {
+            let b = (run[0] >> 32) as u32;
+            let he = |i: usize| (run[i] as u32) as usize;
+            match run.len() {
+                1 => {}
+                2 => {
+                    let (h0, h1) = (he(0), he(1));
+                    let start = |h: usize| faces[h / 3][h % 3];
+                    if start(h0) == start(h1) {
+                        let e = MeshError::InconsistentOrientation {
+                            face: h1 / 3,
+                            other: h0 / 3,
+                            a: start(h0),
+                            b: faces[h0 / 3][(h0 % 3 + 1) % 3],
+                        };
+                        if first_error.as_ref().is_none_or(|(f, _)| h1 / 3 < *f) {
+                            first_error = Some((h1 / 3, e));
+                        }
+                    } else {
+                        opposite[h0] = h1 as u32;
+                        opposite[h1] = h0 as u32;
                     }
-                } else {
-                    opposite[h0] = h1 as u32;
-                    opposite[h1] = h0 as u32;
                 }
-            }
-            count => {
-                let fs: Vec<usize> = keys[i..j]
-                    .iter()
-                    .take(4)
-                    .map(|k| k.1 as usize / 3)
-                    .collect();
-                let at = fs[0];
-                // non-manifold edges outrank orientation problems at the same place
-                if first_error
-                    .as_ref()
-                    .is_none_or(|(f, e)| at < *f || !matches!(e, MeshError::NonManifoldEdge { .. }))
-                {
-                    first_error = Some((
-                        at,
-                        MeshError::NonManifoldEdge {
-                            a,
-                            b,
-                            count,
-                            faces: fs,
-                        },
-                    ));
+                count => {
+                    let fs: Vec<usize> = (0..count.min(4)).map(|i| he(i) / 3).collect();
+                    let at = fs[0];
+                    // non-manifold edges outrank orientation problems at the same place
+                    if first_error.as_ref().is_none_or(|(f, e)| {
+                        at < *f || !matches!(e, MeshError::NonManifoldEdge { .. })
+                    }) {
+                        first_error = Some((
+                            at,
+                            MeshError::NonManifoldEdge {
+                                a,
+                                b,
+                                count,
+                                faces: fs,
+                            },
+                        ));
+                    }
                 }
             }
         }
-        i = j;
     }
     match first_error {
         Some((_, e)) => Err(e),

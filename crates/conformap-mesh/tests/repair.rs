@@ -2,7 +2,7 @@
 //! defects it refuses (with the element they name).
 #![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
-use conformap_mesh::{repair, MeshError, RepairError, RepairOptions, Topology, TriMesh, DROPPED};
+use conformap_mesh::{repair, MeshError, RepairOptions, Topology, TriMesh, DROPPED};
 
 /// A grid of `n × n` squares (two triangles each), consistently oriented.
 fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
@@ -194,7 +194,7 @@ fn a_mobius_strip_is_not_orientable_and_says_where() {
         MeshError::InconsistentOrientation { .. }
     ));
     match repair(&p, &f, &RepairOptions::DEFAULT).unwrap_err() {
-        RepairError::NonOrientable { face, other, a, b } => {
+        MeshError::NonOrientable { face, other, a, b } => {
             assert!(face < f.len() && other < f.len() && face != other);
             // a, b is an edge of both faces
             for t in [f[face], f[other]] {
@@ -220,25 +220,25 @@ fn defects_repair_cannot_touch_name_input_elements() {
     g[5][1] = 99;
     assert_eq!(
         repair(&p, &g, &RepairOptions::DEFAULT).unwrap_err(),
-        RepairError::Invalid(MeshError::IndexOutOfRange {
+        MeshError::IndexOutOfRange {
             face: 5,
             index: 99,
             vertex_count: 9
-        })
+        }
     );
     let mut g = f.clone();
     g[3] = [4, 4, 5];
     assert_eq!(
         repair(&p, &g, &RepairOptions::DEFAULT).unwrap_err(),
-        RepairError::Invalid(MeshError::RepeatedVertexInFace { face: 3, vertex: 4 })
+        MeshError::RepeatedVertexInFace { face: 3, vertex: 4 }
     );
     assert_eq!(
         repair(&[], &[], &RepairOptions::DEFAULT).unwrap_err(),
-        RepairError::Invalid(MeshError::NoVertices)
+        MeshError::NoVertices
     );
     assert_eq!(
         repair(&p, &[], &RepairOptions::DEFAULT).unwrap_err(),
-        RepairError::Invalid(MeshError::NoFaces { vertices: 9 })
+        MeshError::NoFaces { vertices: 9 }
     );
 
     // a NaN vertex and a degenerate face survive the repair; validation names them in

@@ -36,6 +36,18 @@ impl Chart {
         }
     }
 
+    /// The chart image of `p1` (on the positive real axis).
+    #[inline]
+    pub(crate) fn w1(&self) -> f64 {
+        self.w1
+    }
+
+    /// The chart image of `p2` (in the upper half-plane).
+    #[inline]
+    pub(crate) fn w2(&self) -> Complex64 {
+        self.w2
+    }
+
     /// `|μ|` of the affine map `w ↦ f` taking the chart triangle to the image `f`.
     ///
     /// Writing the map as `f(w) = f0 + a w + b w̄` and solving on the two edges

@@ -12,6 +12,9 @@
 //!   JSON report (`serde::Serialize`), configured by [`MetricsOptions`].
 //! - Building blocks for solvers: [`dirichlet_energy`] (CEM Eq. 5), [`image_area`] (Eq. 8),
 //!   [`conformal_energy`] (Eq. 7).
+//! - Per face, for pictures and custom statistics: [`face_distortions`] /
+//!   [`face_distortion`] → [`FaceDistortion`] (corner angle differences, `|μ|`, areas), and
+//!   [`isometric_chart`] to judge maps into 3D (a sphere map's chord triangles) the same way.
 //! - [`MetricsError`]: a map that cannot be judged (wrong length, NaN at a vertex, …).
 //!
 //! # Example
@@ -40,23 +43,30 @@
 //! ```
 
 mod circles;
+mod cross_ratio;
 mod energy;
 mod error;
 mod face;
 mod metrics;
 mod options;
+mod per_face;
 mod report;
 mod stats;
+mod summary;
 
+pub use cross_ratio::{cross_ratio_distortion, cross_ratio_logs};
 pub use energy::{conformal_energy, dirichlet_energy, image_area};
 pub use error::{MetricsError, MAP_ABS_LIMIT};
 pub use face::BELTRAMI_ABS_CAP;
-pub use metrics::planar_map_metrics;
+pub use metrics::{corner_map_metrics, planar_map_metrics};
 pub use options::{MetricsOptions, OuterCircle};
-pub use report::{
-    AngleDistortion, AreaDistortion, BeltramiStats, Histogram, LoopCircle, MapMetrics,
-};
+pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
+pub use report::{Histogram, LoopCircle, MapMetrics};
 pub use stats::ANGLE_HISTOGRAM_EDGES_DEG;
+pub use summary::{
+    abs_log_stats, angle_stats, log_ratio_stats, summary_stats, AbsLogStats, AngleStats,
+    LogRatioStats, SummaryStats,
+};
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]

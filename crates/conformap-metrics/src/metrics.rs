@@ -9,10 +9,9 @@ use crate::energy::{corners, face_dirichlet, image_area_unchecked, twice_signed_
 use crate::error::{check_map, MetricsError};
 use crate::face::{image_angles, Chart};
 use crate::options::{MetricsOptions, OuterCircle};
-use crate::report::{
-    AngleDistortion, AreaDistortion, BeltramiStats, Histogram, LoopCircle, MapMetrics,
-};
+use crate::report::{Histogram, LoopCircle, MapMetrics};
 use crate::stats::{angle_bin, p95, Running, ANGLE_HISTOGRAM_EDGES_DEG};
+use crate::summary::{AngleStats, LogRatioStats, SummaryStats};
 
 /// Whether twice the signed area of an image face marks it degenerate: exactly zero or not
 /// finite. Tiny areas (1e-20 and below) are *not* degenerate: conformal maps crowd
@@ -107,9 +106,83 @@ pub fn planar_map_metrics(
     };
 
     let signed_area = image_area_unchecked(mesh, map);
-    let reversed = options.fix_orientation && signed_area < 0.0;
-    let fixed = |t: [u32; 3]| {
-        let g = corners(map, t);
+    let mut metrics = face_passes(mesh, signed_area, options.fix_orientation, |f| {
+        corners(map, mesh.faces()[f])
+    });
+    metrics.boundary_circles = boundary_circles(mesh, map, outer_loop, options.outer_circle);
+    metrics.circle_residual_max = metrics
+        .boundary_circles
+        .iter()
+        .map(|c| c.residual_max)
+        .fold(0.0, f64::max);
+    metrics.outer_loop = outer_loop;
+    Ok(metrics)
+}
+
+/// Judges a seamed planar map: `corner_map[3 f + k]` is the image of corner `k` of face `f`,
+/// so a vertex may have different images in different faces (a map cut open along seams, as
+/// `conformap global` writes, or another tool's atlas). Every metric of
+/// [`planar_map_metrics`] with the same conventions, except that the image area is the sum
+/// of the faces' signed areas and no boundary loop is compared with a circle
+/// (`boundary_circles` empty, `circle_residual_max` 0, `outer_loop` `None`); for a map
+/// without seams the two functions agree.
+///
+/// # Errors
+/// [`MetricsError::LengthMismatch`] unless `corner_map` has `3 · faces` values (the error
+/// counts corners); [`MetricsError::NonFiniteValue`], [`MetricsError::ValueTooLarge`]
+/// naming the first bad corner.
+///
+/// # Examples
+/// ```
+/// use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
+/// use num_complex::Complex64;
+/// let mesh = conformap_mesh::TriMesh::try_new(
+///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+///     vec![[0, 1, 2], [0, 2, 3]],
+/// )?;
+/// let z = |x: f64, y: f64| Complex64::new(x, y);
+/// // the second face translated by 5: a seam along edge 0–2, each face still isometric
+/// let corners = [z(0., 0.), z(1., 0.), z(1., 1.), z(5., 0.), z(6., 1.), z(5., 1.)];
+/// let m = corner_map_metrics(&mesh, &corners, &MetricsOptions::DEFAULT)?;
+/// assert!(m.conformal_energy.abs() < 1e-14 && m.angle_distortion_deg.max < 1e-12);
+/// assert_eq!(m.flipped_faces, 0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn corner_map_metrics(
+    mesh: &TriMesh,
+    corner_map: &[Complex64],
+    options: &MetricsOptions,
+) -> Result<MapMetrics, MetricsError> {
+    check_map(3 * mesh.num_faces(), corner_map)?;
+    let image = |f: usize| {
+        [
+            corner_map[3 * f],
+            corner_map[3 * f + 1],
+            corner_map[3 * f + 2],
+        ]
+    };
+    let twice: f64 = (0..mesh.num_faces())
+        .map(|f| twice_signed_area(image(f)))
+        .sum();
+    Ok(face_passes(
+        mesh,
+        0.5 * twice,
+        options.fix_orientation,
+        image,
+    ))
+}
+
+/// The face-by-face metrics (two passes) of the map whose face `f` has image
+/// `image(f)` and whose total signed image area is `signed_area`; boundary fields empty.
+fn face_passes(
+    mesh: &TriMesh,
+    signed_area: f64,
+    fix_orientation: bool,
+    image: impl Fn(usize) -> [Complex64; 3],
+) -> MapMetrics {
+    let reversed = fix_orientation && signed_area < 0.0;
+    let fixed = |f: usize| {
+        let g = image(f);
         if reversed {
             g.map(|z| z.conj())
         } else {
@@ -119,8 +192,8 @@ pub fn planar_map_metrics(
 
     // pass 1: the area totals over the measured faces
     let (mut image_total, mut mesh_total) = (0.0, 0.0);
-    for (f, &t) in mesh.faces().iter().enumerate() {
-        let twice = twice_signed_area(corners(map, t));
+    for f in 0..mesh.num_faces() {
+        let twice = twice_signed_area(image(f));
         if !is_degenerate(twice) {
             image_total += 0.5 * twice.abs();
             let p = face_points(mesh, f);
@@ -137,9 +210,9 @@ pub fn planar_map_metrics(
     let mut area_abs = Running::default();
     let mut corner_distortion: Vec<f64> = Vec::with_capacity(3 * mesh.num_faces());
     let mut counts = vec![0u64; ANGLE_HISTOGRAM_EDGES_DEG.len() - 1];
-    for (f, &t) in mesh.faces().iter().enumerate() {
+    for f in 0..mesh.num_faces() {
         let p = face_points(mesh, f);
-        let g = fixed(t);
+        let g = fixed(f);
         dirichlet += face_dirichlet(triangle_cotangents(p), g);
         let twice = twice_signed_area(g);
         if is_degenerate(twice) {
@@ -165,43 +238,37 @@ pub fn planar_map_metrics(
     }
     let image_area = if reversed { -signed_area } else { signed_area };
 
-    let boundary_circles = boundary_circles(mesh, map, outer_loop, options.outer_circle);
-    let circle_residual_max = boundary_circles
-        .iter()
-        .map(|c| c.residual_max)
-        .fold(0.0, f64::max);
-
-    Ok(MapMetrics {
+    MapMetrics {
         conformal_energy: dirichlet - image_area,
         dirichlet_energy: dirichlet,
         image_area,
-        angle_distortion_deg: AngleDistortion {
+        angle_distortion_deg: AngleStats {
             mean: angle.mean(),
             sd: angle.sd(),
             max: angle.max(),
             p95: p95(&mut corner_distortion),
         },
-        beltrami_abs: BeltramiStats {
+        beltrami_abs: SummaryStats {
             mean: beltrami.mean(),
             sd: beltrami.sd(),
             max: beltrami.max(),
         },
-        area_distortion_log: AreaDistortion {
+        area_distortion_log: LogRatioStats {
             mean_abs: area_abs.mean(),
             sd: area.sd(),
         },
         flipped_faces: flipped,
         degenerate_faces: degenerate,
-        circle_residual_max,
+        circle_residual_max: 0.0,
         orientation_reversed: reversed,
         measured_faces: mesh.num_faces() - degenerate,
         angle_histogram: Histogram {
             edges_deg: ANGLE_HISTOGRAM_EDGES_DEG.to_vec(),
             counts,
         },
-        outer_loop,
-        boundary_circles,
-    })
+        outer_loop: None,
+        boundary_circles: Vec::new(),
+    }
 }
 
 /// The circle of every boundary loop, in loop order.

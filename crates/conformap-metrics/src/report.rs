@@ -2,43 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Angle distortion `|mesh corner angle − image corner angle|` in degrees, over the corners
-/// of the measured (non-degenerate) faces.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct AngleDistortion {
-    /// Mean.
-    pub mean: f64,
-    /// Population standard deviation.
-    pub sd: f64,
-    /// Maximum.
-    pub max: f64,
-    /// 95th percentile (nearest rank: the `⌈0.95 n⌉`-th smallest of the `n` corners).
-    pub p95: f64,
-}
-
-/// Statistics of the Beltrami coefficient modulus `|μ|` over the measured faces.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct BeltramiStats {
-    /// Mean.
-    pub mean: f64,
-    /// Population standard deviation.
-    pub sd: f64,
-    /// Maximum.
-    pub max: f64,
-}
-
-/// Statistics of the per-face log area ratio
-/// `log((image area / total image area) / (mesh area / total mesh area))`.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct AreaDistortion {
-    /// Mean of its absolute value.
-    pub mean_abs: f64,
-    /// Population standard deviation of the (signed) log ratio.
-    pub sd: f64,
-}
+use crate::summary::{AngleStats, LogRatioStats, SummaryStats};
 
 /// A histogram: `counts[k]` values fell in `[edges_deg[k], edges_deg[k + 1])` (the last bin
 /// is closed).
@@ -85,11 +49,11 @@ pub struct MapMetrics {
     /// the orientation-fixed map: never negative when the orientation is fixed.
     pub image_area: f64,
     /// Corner angle distortion, degrees.
-    pub angle_distortion_deg: AngleDistortion,
+    pub angle_distortion_deg: AngleStats,
     /// `|μ|`, `μ = f_z̄ / f_z` per face.
-    pub beltrami_abs: BeltramiStats,
+    pub beltrami_abs: SummaryStats,
     /// Per-face log area ratio.
-    pub area_distortion_log: AreaDistortion,
+    pub area_distortion_log: LogRatioStats,
     /// Faces whose image has negative signed area (after the orientation fix).
     pub flipped_faces: usize,
     /// Faces whose image area is exactly zero (collinear or coincident image vertices).

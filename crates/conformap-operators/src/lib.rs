@@ -22,16 +22,22 @@
 //! ```
 
 mod cholesky;
+mod circle;
+mod error;
 mod geometry;
 mod intrinsic;
 mod laplacian;
 mod lu;
 mod mean_value;
+pub mod memory;
+mod quality;
 
 pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
     DenseModifiedLblt, FactorStats, InverseGram, Ordering, SymbolicAnalysis,
 };
+pub use circle::{circle_residual, fit_circle, Circle, FIT_REFINE_STEPS};
+pub use error::OperatorError;
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,
     triangle_cotangents,
@@ -45,56 +51,5 @@ pub use laplacian::{
 };
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
-
-/// Errors of the operators crate.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum OperatorError {
-    /// The matrix is not positive definite: the Cholesky pivot at this (permuted) column was
-    /// not positive. For a cotangent `L_II` this means the mesh has strongly negative
-    /// cotangent weights (badly non-Delaunay) or an interior part cut off from the boundary.
-    #[error("the matrix is not positive definite (Cholesky pivot {pivot} is not positive)")]
-    NotPositiveDefinite {
-        /// The failing pivot (in the permuted order).
-        pivot: usize,
-    },
-    /// A matrix given to the solver is not square CSC.
-    #[error("expected a square CSC matrix, got {rows} × {cols}")]
-    NotSquareCsc {
-        /// Rows.
-        rows: usize,
-        /// Columns.
-        cols: usize,
-    },
-    /// A matrix given to [`SymbolicAnalysis::factor`] does not have the pattern analysed.
-    #[error("the matrix does not have the sparsity pattern that was analysed")]
-    PatternMismatch,
-    /// A custom ordering is not a permutation of `0..n`.
-    #[error("the custom ordering is not a permutation of 0..{n}")]
-    BadPermutation {
-        /// Dimension.
-        n: usize,
-    },
-    /// The intrinsic Delaunay flip loop ran out of its flip budget
-    /// ([`IntrinsicOptions::max_flips_per_edge`] per interior edge): a numerical cycle of
-    /// flips. Fix: raise the budget or the Delaunay tolerance, or use the plain cotangent
-    /// Laplacian.
-    #[error("intrinsic Delaunay flips did not finish: {flips} flips reached the limit {limit}")]
-    FlipLimit {
-        /// Flips performed.
-        flips: usize,
-        /// The budget.
-        limit: usize,
-    },
-    /// An option is out of range. Fix: see the option's documentation for its range.
-    #[error("invalid option {name}: {reason}")]
-    InvalidOption {
-        /// The option.
-        name: &'static str,
-        /// What is required.
-        reason: &'static str,
-    },
-    /// The backend failed for another reason (e.g. out of memory).
-    #[error("sparse factorization failed: {0}")]
-    Factorization(String),
-}
+pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
+pub use quality::{mesh_quality, MeshQuality};

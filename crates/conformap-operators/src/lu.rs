@@ -3,6 +3,7 @@
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::Lu;
+use faer::sparse::linalg::LuError;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::MatMut;
 use num_complex::Complex64;
@@ -21,7 +22,7 @@ impl LuSolver {
     /// Factors the square CSC matrix `a`.
     ///
     /// # Errors
-    /// [`OperatorError::Factorization`] if `a` is singular or memory runs out, and
+    /// [`OperatorError::StructurallySingular`] if `a` is singular, [`OperatorError::OutOfMemory`] if memory runs out, and
     /// [`OperatorError::NotSquareCsc`] for a non-square or non-CSC matrix.
     pub fn factor(a: &CsMat<f64>) -> Result<Self, OperatorError> {
         let (rows, cols) = (a.rows(), a.cols());
@@ -35,7 +36,12 @@ impl LuSolver {
         let symbolic = SymbolicSparseColMatRef::new_checked(rows, cols, col_ptr, None, indices);
         let lu = SparseColMatRef::new(symbolic, data)
             .sp_lu()
-            .map_err(|e| OperatorError::Factorization(format!("sparse LU: {e:?}")))?;
+            .map_err(|e| match e {
+                LuError::SymbolicSingular { index } => {
+                    OperatorError::StructurallySingular { index }
+                }
+                LuError::Generic(e) => OperatorError::from_faer(e, "the sparse LU"),
+            })?;
         Ok(Self { lu, n: rows })
     }
 

@@ -12,8 +12,8 @@
 //!   [`shared_mesh_or_skip`] (`../shared/meshes/…`, absent on a fresh clone),
 //!   [`real_mesh_or_skip`] (either), and [`read_plain_obj`] for plain `v`/`f` OBJ files.
 //! - Analytic meshes built in code: [`flat_disk`], [`square_grid`], [`annulus`],
-//!   [`disk_with_holes`] (flat, counter-clockwise); [`cylinder`], [`torus`], [`icosphere`]
-//!   (outward normals).
+//!   [`disk_with_holes`] (flat, counter-clockwise); [`cylinder`], [`torus`], [`jittered_torus`],
+//!   [`icosphere`] (outward normals).
 //!
 //! # Example
 //! ```
@@ -31,6 +31,7 @@
 mod assert;
 mod fixtures;
 mod holes;
+mod jittered;
 mod planar;
 mod surfaces;
 
@@ -40,6 +41,7 @@ pub use fixtures::{
     workspace_root, FixtureError,
 };
 pub use holes::{disk_with_holes, Circle};
+pub use jittered::jittered_torus;
 pub use planar::{annulus, flat_disk, square_grid};
 pub use surfaces::{cylinder, icosphere, torus};
 

@@ -1,10 +1,12 @@
 //! Benchmarks of `conformap disk` stages on real and generated meshes.
 //!
 //! ```text
-//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic] [--ordering auto|amd|nd] MESH... [gen:250k gen:1m cap:1m ...]
+//! cargo run --release -p conformap-bench -- [--runs N] [--method ccem-qn|ccem|cem|harmonic|global] [--ordering auto|amd|nd] MESH... [gen:250k gen:1m cap:1m ...]
 //! ```
 //!
 //! The default method is `conformap disk`'s, `ccem-qn`. Stages: see [`stages`].
+//! `--method global` measures `conformap global` on meshes of genus ≥ 1 instead (see
+//! [`global_row`]).
 //! Each (mesh, run) executes in a child process of this binary, so that the peak resident
 //! set size (VmHWM) is that run's alone; the parent prints a Markdown table of medians.
 //! `gen:N` (N like `250k`, `1m`, `2m`) is a bumpy height field over a square with about N
@@ -14,6 +16,7 @@
 //! open). See [`generate`].
 
 mod generate;
+mod global_row;
 mod stages;
 
 use std::path::{Path, PathBuf};
@@ -23,7 +26,7 @@ use crate::stages::StageRow;
 
 fn usage() -> ! {
     eprintln!(
-        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic] [--ordering auto|amd|nd] MESH.obj... [gen:250k|disk:1m|cap:1m ...]\n       \
+        "usage: conformap-bench [--runs N] [--method ccem-qn|ccem|cem|harmonic|global] [--ordering auto|amd|nd] MESH.obj... [gen:250k|disk:1m|cap:1m ...]\n       \
          conformap-bench --child MESH METHOD ORDERING   (internal)"
     );
     std::process::exit(2)
@@ -36,8 +39,13 @@ fn main() {
         else {
             usage()
         };
-        match stages::run_once(Path::new(mesh), method, ordering) {
-            Ok(row) => println!("{}", row.to_line()),
+        let line = if method == "global" {
+            global_row::run_once(Path::new(mesh)).map(|r| r.to_line())
+        } else {
+            stages::run_once(Path::new(mesh), method, ordering).map(|r| r.to_line())
+        };
+        match line {
+            Ok(line) => println!("{line}"),
             Err(e) => {
                 eprintln!("{mesh}: {e}");
                 std::process::exit(1);
@@ -71,7 +79,15 @@ fn main() {
     println!(
         "method `{method}`, ordering `{ordering}`, the run of median ratio of {runs}, each in its own process; times in ms\n"
     );
-    println!("{}", StageRow::header());
+    let global = method == "global";
+    println!(
+        "{}",
+        if global {
+            global_row::GlobalRow::header()
+        } else {
+            StageRow::header()
+        }
+    );
     for input in inputs {
         let generated = if let Some(size) = input.strip_prefix("gen:") {
             Some(generate::generated_obj(size))
@@ -89,6 +105,7 @@ fn main() {
             None => PathBuf::from(&input),
         };
         let mut rows = Vec::new();
+        let mut global_rows = Vec::new();
         for _ in 0..runs {
             let out = Command::new(&exe)
                 .arg("--child")
@@ -98,7 +115,10 @@ fn main() {
                 .output();
             match out {
                 Ok(o) if o.status.success() => {
-                    if let Some(row) = StageRow::from_line(&String::from_utf8_lossy(&o.stdout)) {
+                    let line = String::from_utf8_lossy(&o.stdout);
+                    if global {
+                        global_rows.extend(global_row::GlobalRow::from_line(&line));
+                    } else if let Some(row) = StageRow::from_line(&line) {
                         rows.push(row);
                     }
                 }
@@ -117,6 +137,9 @@ fn main() {
             }
         }
         if let Some((median, lo, hi)) = StageRow::median(&rows) {
+            println!("{}", median.to_markdown(&input, lo, hi));
+        }
+        if let Some((median, lo, hi)) = global_row::GlobalRow::median(&global_rows) {
             println!("{}", median.to_markdown(&input, lo, hi));
         }
     }

@@ -5,12 +5,14 @@ use std::path::PathBuf;
 use clap::Args;
 use conformap_io::RawMesh;
 use conformap_mesh::{repair, RepairOptions, TriMesh};
-use conformap_operators::{corner_angles, cotan_laplacian, surface_area};
+use conformap_operators::{mesh_quality, surface_area};
 use serde_json::json;
 
-use crate::commands::disk::{repair_input, repairs_json};
-use crate::commands::say;
+use std::fmt::Write;
+
 use crate::failure::{repair_failure, Failure};
+use crate::pipeline::{repair_input, Outcome};
+use crate::report::{to_value, RepairsReport};
 
 /// Arguments of `conformap info`.
 #[derive(Debug, Args)]
@@ -28,13 +30,13 @@ pub struct InfoArgs {
 /// Runs `conformap info`. Without `--repair`, an invalid mesh is an error whose hint says
 /// what `--repair` would do about it; a valid one lists the repairs that would still apply
 /// (`repairs_available`, e.g. keeping the largest of several components).
-pub fn run(args: &InfoArgs) -> Result<(), Failure> {
+pub fn run(args: &InfoArgs) -> Result<Outcome, Failure> {
     let raw = conformap_io::read_raw_mesh(&args.mesh)?;
     let value = if args.repair {
         let input = repair_input(raw)?;
         let mut value = describe(&input.mesh, &args.mesh);
         if let Some(log) = &input.repairs {
-            value["repairs"] = repairs_json(log);
+            value["repairs"] = to_value(&RepairsReport::new(log));
         }
         value
     } else {
@@ -51,34 +53,22 @@ pub fn run(args: &InfoArgs) -> Result<(), Failure> {
         value["repairs_available"] = json!(available_repairs(&loaded.mesh));
         value
     };
-    if args.json {
-        say(&serde_json::to_string_pretty(&value).unwrap_or_default());
+    let text = if args.json {
+        serde_json::to_string_pretty(&value).unwrap_or_default()
     } else {
-        print_text(&value);
-    }
-    Ok(())
+        text(&value)
+    };
+    Ok(Outcome {
+        stdout: Some(text),
+        ..Outcome::default()
+    })
 }
 
 /// Everything `info` reports about a valid mesh, as JSON.
 pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
     let loops: Vec<usize> = mesh.boundary_loops().iter().map(Vec::len).collect();
     let wc = mesh.well_conditioned();
-    let l = cotan_laplacian(mesh);
-    // an edge's weight is −L_ij; count edges (upper triangle) with negative weight
-    let mut negative = 0usize;
-    for (j, col) in l.outer_iterator().enumerate() {
-        for (i, &v) in col.iter() {
-            if i < j && v > 0.0 {
-                negative += 1;
-            }
-        }
-    }
-    let angles = corner_angles(mesh);
-    let (mut amin, mut amax) = (f64::INFINITY, 0.0f64);
-    for a in angles.iter().flatten() {
-        amin = amin.min(*a);
-        amax = amax.max(*a);
-    }
+    let q = mesh_quality(mesh);
     json!({
         "path": path.display().to_string(),
         "valid": true,
@@ -93,10 +83,10 @@ pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
         "topology": mesh.topology().to_string(),
         "bbox_diagonal": mesh.bbox_diagonal(),
         "surface_area": surface_area(mesh),
-        "angle_min_deg": amin.to_degrees(),
-        "angle_max_deg": amax.to_degrees(),
-        "negative_cotan_edges": negative,
-        "negative_cotan_edge_fraction": negative as f64 / mesh.num_edges() as f64,
+        "angle_min_deg": q.angle_min_deg,
+        "angle_max_deg": q.angle_max_deg,
+        "negative_cotan_edges": q.negative_cotan_edges,
+        "negative_cotan_edge_fraction": q.negative_cotan_edge_fraction,
         "well_conditioned": {
             "holds": wc.holds(),
             "connected": wc.connected,
@@ -143,7 +133,12 @@ fn available_repairs(mesh: &TriMesh) -> Vec<String> {
     }
 }
 
-fn print_text(v: &serde_json::Value) {
+/// The text form of `info`'s description.
+fn text(v: &serde_json::Value) -> String {
+    let mut out = String::new();
+    let mut say = |line: &str| {
+        let _ = writeln!(out, "{line}");
+    };
     let g = |k: &str| v.get(k).cloned().unwrap_or(serde_json::Value::Null);
     say(&format!(
         "mesh:        {}",
@@ -217,4 +212,6 @@ fn print_text(v: &serde_json::Value) {
         };
         say(&format!("repaired:    {applied}"));
     }
+    out.pop();
+    out
 }

@@ -2,13 +2,15 @@
 
 use std::path::PathBuf;
 
+use std::fmt::Write;
+
 use clap::Args;
-use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use num_complex::Complex64;
+use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
-use crate::commands::say;
+use crate::commands::param::{read_map_file, PlanarMap};
 use crate::failure::Failure;
+use crate::pipeline::Outcome;
 use crate::report::InputInfo;
 
 /// Arguments of `conformap metrics`.
@@ -17,37 +19,27 @@ pub struct MetricsArgs {
     /// The 3D mesh.
     pub mesh: PathBuf,
     /// The map: an OBJ/glTF with one texture coordinate per vertex (read as
-    /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), or a flat mesh
-    /// without texture coordinates whose (x, y) are the map.
+    /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), a seamed map
+    /// with texture coordinates per face corner (`f v/vt`, as `global` writes; read as
+    /// (u, v) = vt, no circle fits), or a flat mesh without texture coordinates whose
+    /// (x, y) are the map.
     pub param: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
 }
 
-/// Runs `conformap metrics`.
-pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
+/// Runs `conformap metrics`: the metrics as text or JSON, for stdout.
+pub fn run(args: &MetricsArgs) -> Result<Outcome, Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
-    let param = crate::commands::read_map_file(&args.param, &args.mesh, mesh)?;
-    let (map, source): (Vec<Complex64>, &str) = match &param.uv {
-        Some(uv) => (
-            uv.iter()
-                .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
-                .collect(),
-            "texture coordinates",
-        ),
-        None => (
-            param
-                .positions
-                .iter()
-                .map(|p| Complex64::new(p[0], p[1]))
-                .collect(),
-            "flat positions",
-        ),
-    };
-    let metrics = planar_map_metrics(mesh, &map, &MetricsOptions::default())
-        .map_err(|e| Failure::input(format!("{}: {e}", args.param.display())))?;
+    let param = read_map_file(&args.param, &args.mesh, mesh)?;
+    let (map, source) = param.planar_map();
+    let metrics = match &map {
+        PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
+        PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
+    }
+    .map_err(|e| Failure::input(format!("{}: {e}", args.param.display())))?;
     let value = json!({
         "conformap_version": env!("CARGO_PKG_VERSION"),
         "command": "metrics",
@@ -55,11 +47,15 @@ pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
         "param": { "path": args.param.display().to_string(), "map_from": source },
         "metrics": metrics,
     });
+    let mut out = String::new();
     if args.json {
-        say(&serde_json::to_string_pretty(&value).unwrap_or_default());
+        out = serde_json::to_string_pretty(&value).unwrap_or_default();
     } else {
         let m = &value["metrics"];
-        say(&format!(
+        let mut say = |line: String| {
+            let _ = writeln!(out, "{line}");
+        };
+        say(format!(
             "map of {} from {} ({source})",
             args.mesh.display(),
             args.param.display()
@@ -72,17 +68,21 @@ pub fn run(args: &MetricsArgs) -> Result<(), Failure> {
             "degenerate_faces",
             "circle_residual_max",
         ] {
-            say(&format!("{key:22} {}", m[key]));
+            say(format!("{key:22} {}", m[key]));
         }
-        say(&format!(
+        say(format!(
             "{:22} {}",
             "angle_distortion_deg", m["angle_distortion_deg"]
         ));
-        say(&format!("{:22} {}", "beltrami_abs", m["beltrami_abs"]));
-        say(&format!(
+        say(format!("{:22} {}", "beltrami_abs", m["beltrami_abs"]));
+        say(format!(
             "{:22} {}",
             "area_distortion_log", m["area_distortion_log"]
         ));
+        out.pop();
     }
-    Ok(())
+    Ok(Outcome {
+        stdout: Some(out),
+        ..Outcome::default()
+    })
 }

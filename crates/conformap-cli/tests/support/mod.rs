@@ -52,5 +52,5 @@ pub fn stderr(o: &Output) -> String {
 }
 
 pub fn json(path: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("parse json")
 }

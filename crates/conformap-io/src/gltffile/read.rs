@@ -9,7 +9,7 @@ use gltf::{Gltf, Semantic};
 use super::buffers::{check_container, load_buffers};
 use super::weld::{weld, PrimRange, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
 use crate::error::IoError;
-use crate::loaded::{Format, LoadedMesh};
+use crate::loaded::Format;
 use crate::raw::RawMesh;
 
 type Matrix = [[f64; 4]; 4];
@@ -20,18 +20,9 @@ const IDENTITY: Matrix = [
     [0.0, 0.0, 1.0, 0.0],
     [0.0, 0.0, 0.0, 1.0],
 ];
-/// Reads and validates glTF or GLB bytes; external buffers are resolved against `base`
-/// (none: only embedded data is allowed). `path` names the file in errors.
-pub(crate) fn read_gltf(
-    bytes: &[u8],
-    path: &Path,
-    base: Option<&Path>,
-    format: Format,
-) -> Result<LoadedMesh, IoError> {
-    read_gltf_raw(bytes, path, base, format)?.validate()
-}
-
-/// [`read_gltf`] without validating the welded mesh.
+/// Reads glTF or GLB bytes without validating the welded mesh; external buffers are
+/// resolved against `base` (none: only embedded data is allowed). `path` names the file in
+/// errors.
 pub(crate) fn read_gltf_raw(
     bytes: &[u8],
     path: &Path,

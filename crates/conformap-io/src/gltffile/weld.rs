@@ -1,10 +1,11 @@
 //! The scene's triangle soup and its welding into one validated mesh.
 
-use std::collections::HashMap;
 use std::path::Path;
 
+use crate::coincident::classes;
+use crate::corner_uv::CornerUv;
 use crate::error::{Origin, UvProblem};
-use crate::loaded::{Format, SourceInfo, NO_VERTEX};
+use crate::loaded::{Format, SourceInfo};
 use crate::raw::{GltfOrigins, RawMesh};
 
 /// One primitive's share of the concatenated file vertices and faces.
@@ -73,22 +74,7 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
     for &i in soup.faces.iter().flatten() {
         referenced[i as usize] = true;
     }
-    let mut map = vec![NO_VERTEX; nfile];
-    let mut first_file: Vec<usize> = Vec::new();
-    let mut keys: HashMap<[u64; 3], u32> = HashMap::new();
-    for (i, p) in soup.positions.iter().enumerate() {
-        if !referenced[i] {
-            continue;
-        }
-        // + 0.0 turns -0.0 into 0.0, so the two zeros weld
-        let key = p.map(|x| (x + 0.0).to_bits());
-        let next = first_file.len() as u32;
-        let v = *keys.entry(key).or_insert(next);
-        if v == next {
-            first_file.push(i);
-        }
-        map[i] = v;
-    }
+    let (map, first_file) = classes(&soup.positions, Some(&referenced));
     let positions: Vec<[f64; 3]> = first_file.iter().map(|&i| soup.positions[i]).collect();
     let faces: Vec<[u32; 3]> = soup
         .faces
@@ -111,6 +97,17 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
     }
     let uv = weld_uv(&soup, &map, &referenced, first_file.len())
         .map(|uv| uv.into_iter().map(Some).collect());
+    // per corner: the file vertices' coordinates under the file's faces (seams included)
+    let corner_uv = soup
+        .faces
+        .iter()
+        .flatten()
+        .all(|&i| soup.uv[i as usize].is_some())
+        .then(|| CornerUv {
+            texcoords: soup.uv.iter().map(|t| t.unwrap_or([0.0, 0.0])).collect(),
+            faces: soup.faces.clone(),
+        })
+        .filter(|c| !c.faces.is_empty());
     let mut source = SourceInfo::new(path.to_path_buf(), format);
     source.file_vertex_count = nfile;
     source.weld_map = Some(map);
@@ -120,7 +117,7 @@ pub(crate) fn weld(mut soup: Soup, path: &Path, format: Format) -> RawMesh {
         prims: soup.prims,
         first_file,
     };
-    RawMesh::new(positions, faces, uv, source, Some(origins))
+    RawMesh::new(positions, faces, uv, source, Some(origins)).with_corner_uv(corner_uv)
 }
 
 /// One texture coordinate per welded vertex, or the first seam / missing one.

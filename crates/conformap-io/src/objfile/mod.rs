@@ -1,8 +1,10 @@
-//! Wavefront OBJ: reading via `tobj` plus our own line scan, and writing.
+//! Wavefront OBJ: our own parallel reader (lines, chunked parsing, per-vertex `vt`) and
+//! the writer.
 
+mod lines;
+mod parse;
 mod read;
-mod scan;
 mod write;
 
-pub(crate) use read::{read_obj, read_obj_raw};
-pub(crate) use write::{encode_obj, encode_obj_with_uv};
+pub(crate) use read::read_obj_raw;
+pub(crate) use write::{encode_obj, encode_obj_with_corner_uv, encode_obj_with_uv};

@@ -1,52 +1,142 @@
-//! OBJ writing. Numbers use Rust's shortest round-trip formatting (`{:?}` on `f64`), so
-//! reading the file back gives the same bits.
+//! OBJ writing. Numbers use the shortest decimal that reads back as the same f64 (`ryu`),
+//! so reading the file back gives the same bits; indices use `itoa`. Large meshes are
+//! formatted in parallel blocks (rayon), returned as parts in file order for one
+//! sequential write.
 
-use std::fmt::Write as _;
+use rayon::prelude::*;
 
-/// `v` lines and 1-based `f a b c` lines.
-pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<u8> {
-    let mut s = String::with_capacity(40 * points.len() + 24 * faces.len() + 64);
-    let _ = writeln!(
-        s,
-        "# conformap-io: {} vertices, {} faces",
+/// Rows (vertices, texture coordinates or faces) formatted per block: large enough that a
+/// block is far more work than handing it to a thread, small enough to balance two cores.
+const BLOCK_ROWS: usize = 1 << 15;
+
+/// `v` lines and 1-based `f a b c` lines, as parts to be written in order.
+pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
+    let header = format!(
+        "# conformap-io: {} vertices, {} faces\n",
         points.len(),
         faces.len()
     );
-    push_vertices(&mut s, points);
-    for f in faces {
-        let _ = writeln!(s, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1);
-    }
-    s.into_bytes()
+    let mut parts = vec![header.into_bytes()];
+    parts.extend(blocks(points, 3 * 26, push_vertex));
+    parts.extend(blocks(faces, 3 * 9, |out, f| {
+        out.push(b'f');
+        for &i in f {
+            out.push(b' ');
+            push_index(out, i);
+        }
+        out.push(b'\n');
+    }));
+    parts
 }
 
-/// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines.
+/// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines, as parts to be
+/// written in order.
 pub(crate) fn encode_obj_with_uv(
     points: &[[f64; 3]],
     uv: &[[f64; 2]],
     faces: &[[u32; 3]],
-) -> Vec<u8> {
-    let mut s = String::with_capacity(70 * points.len() + 40 * faces.len() + 64);
-    let _ = writeln!(
-        s,
-        "# conformap-io: {} vertices, {} faces, one vt per vertex (vt k belongs to v k)",
+) -> Vec<Vec<u8>> {
+    let header = format!(
+        "# conformap-io: {} vertices, {} faces, one vt per vertex (vt k belongs to v k)\n",
         points.len(),
         faces.len()
     );
-    push_vertices(&mut s, points);
-    for t in uv {
-        let _ = writeln!(s, "vt {:?} {:?}", t[0], t[1]);
-    }
-    for f in faces {
-        let (a, b, c) = (f[0] + 1, f[1] + 1, f[2] + 1);
-        let _ = writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}");
-    }
-    s.into_bytes()
+    let mut parts = vec![header.into_bytes()];
+    parts.extend(blocks(points, 3 * 26, push_vertex));
+    parts.extend(blocks(uv, 2 * 26, |out, t| {
+        out.extend_from_slice(b"vt");
+        push_floats(out, t);
+    }));
+    parts.extend(blocks(faces, 3 * 18, |out, f| {
+        out.push(b'f');
+        for &i in f {
+            out.push(b' ');
+            push_index(out, i);
+            out.push(b'/');
+            push_index(out, i);
+        }
+        out.push(b'\n');
+    }));
+    parts
 }
 
-fn push_vertices(s: &mut String, points: &[[f64; 3]]) {
-    for p in points {
-        let _ = writeln!(s, "v {:?} {:?} {:?}", p[0], p[1], p[2]);
+/// `v` lines, the `vt` lines of a seamed map, and `f a/ta b/tb c/tc` lines (`uv_faces[f]`
+/// gives the `vt` of each corner of `faces[f]`), as parts to be written in order.
+pub(crate) fn encode_obj_with_corner_uv(
+    points: &[[f64; 3]],
+    texcoords: &[[f64; 2]],
+    faces: &[[u32; 3]],
+    uv_faces: &[[u32; 3]],
+) -> Vec<Vec<u8>> {
+    let header = format!(
+        "# conformap-io: {} vertices, {} faces, {} vt (one per corner class: f v/vt)\n",
+        points.len(),
+        faces.len(),
+        texcoords.len()
+    );
+    let mut parts = vec![header.into_bytes()];
+    parts.extend(blocks(points, 3 * 26, push_vertex));
+    parts.extend(blocks(texcoords, 2 * 26, |out, t| {
+        out.extend_from_slice(b"vt");
+        push_floats(out, t);
+    }));
+    let rows: Vec<([u32; 3], [u32; 3])> = faces
+        .iter()
+        .copied()
+        .zip(uv_faces.iter().copied())
+        .collect();
+    parts.extend(blocks(&rows, 3 * 18, |out, (f, t)| {
+        out.push(b'f');
+        for k in 0..3 {
+            out.push(b' ');
+            push_index(out, f[k]);
+            out.push(b'/');
+            push_index(out, t[k]);
+        }
+        out.push(b'\n');
+    }));
+    parts
+}
+
+/// Formats `rows` with `line`, in parallel blocks of [`BLOCK_ROWS`] when there are
+/// several; `guess` is the expected bytes per row (capacity only).
+fn blocks<T: Sync>(
+    rows: &[T],
+    guess: usize,
+    line: impl Fn(&mut Vec<u8>, &T) + Sync,
+) -> Vec<Vec<u8>> {
+    let block = |chunk: &[T]| {
+        let mut out = Vec::with_capacity(guess * chunk.len() + 16);
+        for r in chunk {
+            line(&mut out, r);
+        }
+        out
+    };
+    if rows.len() <= BLOCK_ROWS {
+        return vec![block(rows)];
     }
+    rows.par_chunks(BLOCK_ROWS).map(block).collect()
+}
+
+fn push_vertex(out: &mut Vec<u8>, p: &[f64; 3]) {
+    out.push(b'v');
+    push_floats(out, p);
+}
+
+/// ` x y ...` and the line end. Values must be finite (the API checks them).
+fn push_floats(out: &mut Vec<u8>, values: &[f64]) {
+    let mut buf = ryu::Buffer::new();
+    for &x in values {
+        out.push(b' ');
+        out.extend_from_slice(buf.format_finite(x).as_bytes());
+    }
+    out.push(b'\n');
+}
+
+/// A 0-based index written 1-based.
+fn push_index(out: &mut Vec<u8>, i: u32) {
+    let mut buf = itoa::Buffer::new();
+    out.extend_from_slice(buf.format(u64::from(i) + 1).as_bytes());
 }
 
 #[cfg(test)]
@@ -56,9 +146,26 @@ mod tests {
 
     #[test]
     fn shortest_round_trip_formatting() {
-        let text = encode_obj(&[[0.1, -0.0, 1e-300], [1e300, 3.0, 2.5e-7]], &[]);
-        let text = String::from_utf8(text).unwrap_or_default();
+        let text = encode_obj(&[[0.1, -0.0, 1e-300], [1e300, 3.0, 2.5e-7]], &[[0, 1, 0]]);
+        let text = String::from_utf8(text.concat()).unwrap_or_default();
         assert!(text.contains("v 0.1 -0.0 1e-300\n"), "{text}");
         assert!(text.contains("v 1e300 3.0 2.5e-7\n"), "{text}");
+        assert!(text.ends_with("f 1 2 1\n"), "{text}");
+    }
+
+    #[test]
+    fn blocks_keep_row_order() {
+        let n = 3 * BLOCK_ROWS + 7;
+        let faces: Vec<[u32; 3]> = (0..n as u32).map(|i| [i, i + 1, u32::MAX - 1]).collect();
+        let parts = encode_obj(&[], &faces);
+        assert!(parts.len() > 3);
+        let text = String::from_utf8(parts.concat()).unwrap_or_default();
+        let lines: Vec<&str> = text.lines().skip(1).collect();
+        assert_eq!(lines.len(), n);
+        assert_eq!(lines[n - 1], format!("f {n} {} 4294967295", n + 1));
+        assert_eq!(
+            lines[BLOCK_ROWS],
+            format!("f {} {} 4294967295", BLOCK_ROWS + 1, BLOCK_ROWS + 2)
+        );
     }
 }

@@ -1,0 +1,223 @@
+//! Map files (`PARAM` of `metrics` and `mobius`) and face-region files.
+
+use std::path::{Path, PathBuf};
+
+use conformap_io::CornerUv;
+
+use conformap_mesh::TriMesh;
+use num_complex::Complex64;
+
+use crate::failure::Failure;
+
+/// A map read by [`read_map_file`]: its positions and, when the file has them, its texture
+/// coordinates (one per vertex, or per face corner for a seamed map).
+#[derive(Debug)]
+pub struct MapFile {
+    /// The file.
+    pub path: PathBuf,
+    /// Vertex positions as written (a flat map's `(u, v, 0)`, a sphere map's points, or
+    /// the 3D mesh beside texture coordinates).
+    pub positions: Vec<[f64; 3]>,
+    /// Texture coordinates, one per vertex.
+    pub uv: Option<Vec<[f64; 2]>>,
+    /// Texture coordinates per face corner, when they are not one per vertex (a seam).
+    pub corner_uv: Option<CornerUv>,
+}
+
+/// A planar map: one value per vertex, or per face corner (`3 f + k`) for a seamed map.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlanarMap {
+    /// One value per vertex.
+    PerVertex(Vec<Complex64>),
+    /// One value per face corner.
+    PerCorner(Vec<Complex64>),
+}
+
+impl MapFile {
+    /// The planar map it holds, with the name of its source for the report: per-vertex
+    /// texture coordinates as `u = 2·vt_x − 1, v = 2·vt_y − 1` (the inverse of what `disk`
+    /// writes); seamed texture coordinates as `(u, v) = vt`, per corner; else the
+    /// positions' `(x, y)`.
+    pub fn planar_map(&self) -> (PlanarMap, &'static str) {
+        match (&self.uv, &self.corner_uv) {
+            (Some(uv), _) => (
+                PlanarMap::PerVertex(
+                    uv.iter()
+                        .map(|t| Complex64::new(2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0))
+                        .collect(),
+                ),
+                "texture coordinates",
+            ),
+            (None, Some(c)) => (
+                PlanarMap::PerCorner(
+                    (0..c.faces.len())
+                        .flat_map(|f| (0..3).map(move |k| c.corner(f, k)))
+                        .map(|t| Complex64::new(t[0], t[1]))
+                        .collect(),
+                ),
+                "seamed texture coordinates",
+            ),
+            (None, None) => (
+                PlanarMap::PerVertex(
+                    self.positions
+                        .iter()
+                        .map(|p| Complex64::new(p[0], p[1]))
+                        .collect(),
+                ),
+                "flat positions",
+            ),
+        }
+    }
+
+    /// The planar map with one value per vertex, for commands that need one (`mobius`).
+    ///
+    /// # Errors
+    /// [`Failure::BadInput`] for a seamed map.
+    pub fn planar(&self) -> Result<(Vec<Complex64>, &'static str), Failure> {
+        match self.planar_map() {
+            (PlanarMap::PerVertex(map), from) => Ok((map, from)),
+            (PlanarMap::PerCorner(_), _) => Err(Failure::BadInput(
+                format!(
+                    "{}: the map has seams (a vertex has different texture coordinates in \
+                     different faces); this command needs one value per vertex",
+                    self.path.display()
+                ),
+                Some(
+                    "pass a disk map (the -o or --flat output of `conformap disk`); a seamed \
+                     map is judged by `conformap metrics`"
+                        .to_string(),
+                ),
+            )),
+        }
+    }
+}
+
+/// Reads a map file without geometric validation: a valid map crowds triangles far below
+/// the degenerate-area threshold of a 3D mesh (alligator's disk map: area 1e-28;
+/// armadillo's sphere map: chord triangles of 2e-14), so only its connectivity must match
+/// `mesh`'s, vertex for vertex and face for face.
+///
+/// Texture coordinates, when the file has them, must cover every vertex (the error names
+/// the first that has none).
+pub fn read_map_file(param: &Path, mesh_path: &Path, mesh: &TriMesh) -> Result<MapFile, Failure> {
+    let raw = conformap_io::read_raw_mesh(param)?;
+    let (pv, pf) = (raw.positions.len(), raw.faces.len());
+    if pv != mesh.num_vertices() || pf != mesh.num_faces() {
+        return Err(Failure::BadInput(
+            format!(
+                "{} has {} vertices and {} faces but {} has {} and {}: the map must have the \
+                 mesh's vertices and faces",
+                param.display(),
+                pv,
+                pf,
+                mesh_path.display(),
+                mesh.num_vertices(),
+                mesh.num_faces()
+            ),
+            Some(
+                "pass the map written for this mesh (the -o or --flat output of the command \
+                 that mapped it), not another mesh's"
+                    .to_string(),
+            ),
+        ));
+    }
+    if let Some(face) = (0..mesh.num_faces()).find(|&f| raw.faces[f] != mesh.faces()[f]) {
+        return Err(Failure::BadInput(
+            format!(
+                "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
+                 mesh's faces in the same order",
+                param.display(),
+                raw.faces[face],
+                mesh_path.display(),
+                mesh.faces()[face]
+            ),
+            Some(
+                "write the map with the mesh's own faces in the mesh's order (a re-exported or \
+                 re-triangulated map file does not match)"
+                    .to_string(),
+            ),
+        ));
+    }
+    if let Some(problem @ conformap_io::UvProblem::Missing { .. }) = &raw.uv_problem {
+        return Err(conformap_io::IoError::NotPerVertexUv {
+            path: param.to_path_buf(),
+            problem: problem.clone(),
+        }
+        .into());
+    }
+    let corner_uv = if raw.uv.is_none() {
+        raw.corner_uv
+    } else {
+        None
+    };
+    let uv = match raw.uv {
+        Some(uv) => Some(
+            uv.into_iter()
+                .enumerate()
+                .map(|(vertex, t)| {
+                    t.ok_or_else(|| {
+                        Failure::BadInput(
+                            format!(
+                                "{}: vertex {vertex} has no texture coordinate",
+                                param.display()
+                            ),
+                            Some(
+                                "give every vertex one texture coordinate (f v/vt with one vt \
+                                 per vertex), or pass the map as a flat mesh"
+                                    .to_string(),
+                            ),
+                        )
+                    })
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        None => None,
+    };
+    Ok(MapFile {
+        path: param.to_path_buf(),
+        positions: raw.positions,
+        uv,
+        corner_uv,
+    })
+}
+
+/// Reads a region file: one 0-based face index per line (blank lines and lines starting
+/// with `#` are skipped).
+pub fn read_region(path: &Path, faces: usize) -> Result<Vec<usize>, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        Failure::BadInput(
+            format!("cannot read {}: {e}", path.display()),
+            Some("check the path and that the file is readable text".to_string()),
+        )
+    })?;
+    let mut region = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let f: usize = t.parse().map_err(|_| {
+            Failure::BadInput(
+                format!(
+                    "{} line {}: {t:?} is not a face index",
+                    path.display(),
+                    k + 1
+                ),
+                Some("one 0-based face index per line; # starts a comment line".to_string()),
+            )
+        })?;
+        if f >= faces {
+            return Err(Failure::BadInput(
+                format!(
+                    "{} line {}: face {f} is out of range (the mesh has {faces} faces, 0..{})",
+                    path.display(),
+                    k + 1,
+                    faces.saturating_sub(1)
+                ),
+                Some("face indices are 0-based, in the order of the mesh file".to_string()),
+            ));
+        }
+        region.push(f);
+    }
+    Ok(region)
+}

@@ -1,0 +1,80 @@
+//! Reading the mesh of a command: as read, or repaired with `--repair`.
+
+use std::path::Path;
+
+use conformap_io::{RawMesh, SourceInfo};
+use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
+
+use crate::failure::{repair_failure, Failure};
+
+/// A mesh to map: as read, or repaired.
+#[derive(Debug)]
+pub struct Input {
+    /// The validated mesh.
+    pub mesh: TriMesh,
+    /// Where it came from.
+    pub source: SourceInfo,
+    /// What `--repair` changed (`None` without `--repair`).
+    pub repairs: Option<RepairLog>,
+    /// The path as given.
+    pub path: std::path::PathBuf,
+}
+
+impl Input {
+    /// The file's own vertex layout, for writers that keep it (glTF seams), unless a repair
+    /// changed the mesh.
+    pub fn file_layout(&self) -> Option<&SourceInfo> {
+        let unchanged = self.repairs.as_ref().is_none_or(|log| !log.changed());
+        unchanged.then_some(&self.source)
+    }
+
+    /// A command failure about this input, prefixed by its path.
+    pub fn fail(&self, f: Failure) -> Failure {
+        f.in_file(&self.path)
+    }
+}
+
+/// Reads `path`; with `repair`, reads it raw, applies every repair of
+/// [`conformap_mesh::repair`] and validates the result. Errors name input elements and
+/// file places either way.
+pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
+    if !repair {
+        let loaded = conformap_io::read_mesh(path)?;
+        return Ok(Input {
+            mesh: loaded.mesh,
+            source: loaded.source,
+            repairs: None,
+            path: path.to_path_buf(),
+        });
+    }
+    repair_input(conformap_io::read_raw_mesh(path)?)
+}
+
+/// Applies every repair of [`conformap_mesh::repair`] to `raw` and validates the result;
+/// errors name input elements and their file places.
+pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
+    let fixed = conformap_mesh::repair(&raw.positions, &raw.faces, &RepairOptions::DEFAULT)
+        .map_err(|e| repair_failure(&raw, e))?;
+    raw.positions = Vec::new();
+    raw.faces = Vec::new();
+    let log = fixed.log;
+    let mesh = TriMesh::try_new(fixed.positions, fixed.faces)
+        .map_err(|e| Failure::from(raw.invalid_mesh(log.to_input_error(e))))?;
+    let path = raw.source.path.clone();
+    Ok(Input {
+        mesh,
+        source: raw.source,
+        repairs: Some(log),
+        path,
+    })
+}
+
+/// The repaired → input vertex map as text, one 0-based input vertex per line.
+pub fn vertex_map_text(log: &RepairLog) -> String {
+    let mut text = String::with_capacity(8 * log.vertex_to_input.len());
+    for v in &log.vertex_to_input {
+        text.push_str(&v.to_string());
+        text.push('\n');
+    }
+    text
+}

@@ -1,0 +1,233 @@
+//! One pipeline for every map command: read → check every output path → estimate memory →
+//! solve → metrics → write all outputs or none → report.
+//!
+//! A command is a small implementation of [`MapCommand`]: which arguments it has
+//! ([`InputArgs`] and [`OutputArgs`] are flattened into it), how much memory its solve
+//! needs, and the solve itself, which returns a [`Solved`] (the map as texture coordinates
+//! and a flat mesh, the solver's and the metrics' report sections, timings, a summary
+//! line). [`run_map`] does everything else, the same way for every command, and returns
+//! the typed [`Report`] with the lines to print; it prints nothing itself (only `main`
+//! does), so `batch` and the Python package call it as the binary does.
+//!
+//! # Adding a command
+//! 1. An args struct with `#[command(flatten)] input: InputArgs` and
+//!    `#[command(flatten)] output: OutputArgs` and the command's own flags.
+//! 2. `impl MapCommand for ThoseArgs`: `name`, `work`, `input`, `output`, `peak_bytes` (from the
+//!    library's memory model), `solve` (library calls only: no maths here), and
+//!    `check_usage` / `other_inputs` where the command has more to check.
+//! 3. A variant in `crate::cli::Command` whose arm calls [`run_map`].
+
+pub mod args;
+pub mod input;
+pub mod memory;
+pub mod outputs;
+
+use std::path::Path;
+use std::time::Instant;
+
+use conformap_mesh::TriMesh;
+use serde_json::{Map, Value};
+
+pub use args::{parse_size, InputArgs, OutputArgs};
+pub use input::{read_input, repair_input, Input};
+pub use memory::MemoryCheck;
+pub use outputs::{check_command_outputs, check_outputs, Staged};
+
+use crate::failure::Failure;
+use crate::report::{
+    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, SolverSection,
+    StageTimings,
+};
+
+/// A command that maps a mesh and writes the map.
+pub trait MapCommand {
+    /// The subcommand's name (`"disk"`), the report's `command`.
+    fn name(&self) -> &'static str;
+    /// What the command computes, for messages (`"a disk map"`).
+    fn work(&self) -> &'static str;
+    /// The input arguments.
+    fn input(&self) -> &InputArgs;
+    /// The output arguments.
+    fn output(&self) -> &OutputArgs;
+    /// Files the command reads besides the mesh (no output may overwrite them).
+    fn other_inputs(&self) -> Vec<&Path> {
+        Vec::new()
+    }
+    /// Usage checks that need no file (exit 2).
+    fn check_usage(&self) -> Result<(), Failure> {
+        Ok(())
+    }
+    /// The estimated peak memory (bytes) of [`MapCommand::solve`] on `mesh`, from the
+    /// library's model.
+    fn peak_bytes(&self, mesh: &TriMesh) -> u64;
+    /// Computes the map, its metrics and its report sections.
+    fn solve(&self, input: &Input) -> Result<Solved, Failure>;
+}
+
+/// What a command's solve returns to the pipeline.
+#[derive(Debug)]
+pub struct Solved {
+    /// The report's `method`.
+    pub method: String,
+    /// The texture coordinates written with the mesh to `-o`.
+    pub uv: TexCoords,
+    /// The `--flat` mesh: points, and faces when they are not the mesh's.
+    pub flat: (Vec<[f64; 3]>, Option<Vec<[u32; 3]>>),
+    /// The report's `solver` object.
+    pub solver: SolverSection,
+    /// The report's `param` object, for commands that read a map.
+    pub param: Option<ParamInfo>,
+    /// Top-level report sections of the command (`factorization`, `circle_domain`).
+    pub sections: Map<String, Value>,
+    /// The report's `metrics` object.
+    pub metrics: MetricsSection,
+    /// Timings of the solve: `read` holds the reading of other inputs (a map file), which
+    /// the pipeline adds to its own; `write` and `total` are the pipeline's.
+    pub timings: StageTimings,
+    /// Why `--strict` refuses this result (did not converge, inverted faces), if it does.
+    pub strict_violation: Option<String>,
+    /// The summary line (without the mesh path and the total time, which the pipeline
+    /// adds).
+    pub summary: String,
+}
+
+/// The texture coordinates a command writes to `-o`.
+#[derive(Debug)]
+pub enum TexCoords {
+    /// One per vertex of the input mesh (disk, holes, sphere, mobius).
+    PerVertex(Vec<[f64; 2]>),
+    /// Per face corner of the input mesh: a seamed map (`global`), written as `f v/vt`.
+    PerCorner(conformap_io::CornerUv),
+    /// Per face corner of a refinement of the input mesh the command had to make (a
+    /// double covering that split boundary chords): the refined mesh is written instead of
+    /// the input, and the report says so.
+    Refined {
+        /// The mesh written (its first vertices are the input's, in the input's order).
+        mesh: TriMesh,
+        /// Its seamed map.
+        uv: conformap_io::CornerUv,
+    },
+}
+
+impl From<Vec<[f64; 2]>> for TexCoords {
+    fn from(uv: Vec<[f64; 2]>) -> Self {
+        Self::PerVertex(uv)
+    }
+}
+
+/// What a command did: its report (map commands), what it prints on stdout (`info`,
+/// `metrics`) and the lines for stderr (repairs, the summary).
+#[derive(Debug, Default)]
+pub struct Outcome {
+    /// The report of a map command.
+    pub report: Option<Report>,
+    /// Text for stdout.
+    pub stdout: Option<String>,
+    /// Lines for stderr.
+    pub messages: Vec<String>,
+}
+
+/// Runs a map command through the pipeline.
+///
+/// # Errors
+/// Every [`Failure`] of the stages; nothing is written when any stage fails.
+pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
+    let t_all = Instant::now();
+    let (input_args, output) = (cmd.input(), cmd.output());
+    cmd.check_usage()?;
+    check_command_outputs(input_args, output, &cmd.other_inputs())?;
+    let mesh_path = &input_args.mesh;
+    let memory = MemoryCheck::before_reading(mesh_path, input_args.max_memory)
+        .map_err(|f| f.in_file(mesh_path))?;
+    let t = Instant::now();
+    let input = read_input(mesh_path, input_args.repair)?;
+    let read_ms = ms_since(t);
+    let mesh = &input.mesh;
+    let what = format!(
+        "{} of this mesh ({} vertices, {} faces)",
+        cmd.work(),
+        mesh.num_vertices(),
+        mesh.num_faces()
+    );
+    let memory = memory
+        .before_solving(cmd.peak_bytes(mesh), &what)
+        .map_err(|f| input.fail(f))?;
+    let solved = cmd.solve(&input)?;
+    if let Some(why) = solved.strict_violation.as_ref().filter(|_| output.strict) {
+        return Err(input.fail(Failure::Numerical(format!(
+            "{why} (--strict); nothing written"
+        ))));
+    }
+
+    let t = Instant::now();
+    let mut staged = Staged::new();
+    match &solved.uv {
+        TexCoords::PerVertex(uv) => {
+            staged.mesh_with_uv(&output.output, mesh, uv, input.file_layout())?;
+        }
+        TexCoords::PerCorner(uv) => staged.mesh_with_corner_uv(&output.output, mesh, uv)?,
+        TexCoords::Refined { mesh, uv } => staged.mesh_with_corner_uv(&output.output, mesh, uv)?,
+    }
+    if let Some(path) = &output.flat {
+        let faces = solved.flat.1.as_deref().unwrap_or(mesh.faces());
+        staged.flat(path, &solved.flat.0, faces)?;
+    }
+    if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {
+        staged.text(path, &input::vertex_map_text(log))?;
+    }
+    let timings = StageTimings {
+        read: read_ms + solved.timings.read,
+        write: ms_since(t),
+        total: ms_since(t_all),
+        ..solved.timings
+    };
+    let report = Report {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: cmd.name(),
+        method: solved.method,
+        input: InputInfo::new(mesh_path, mesh),
+        param: solved.param,
+        solver: solved.solver,
+        sections: solved.sections,
+        metrics: solved.metrics,
+        memory: memory.report(),
+        repairs: input.repairs.as_ref().map(RepairsReport::new),
+        timings_ms: timings,
+    };
+    if let Some(path) = &output.report {
+        staged.json(path, &report)?;
+    }
+    staged.commit()?;
+
+    let mut messages = Vec::new();
+    if let Some(log) = input.repairs.as_ref().filter(|l| l.changed()) {
+        messages.push(format!(
+            "{}: repaired: {}",
+            mesh_path.display(),
+            log.actions().join("; ")
+        ));
+    }
+    messages.push(format!(
+        "{}: {}; {:.0} ms",
+        mesh_path.display(),
+        solved.summary,
+        report.timings_ms.total
+    ));
+    Ok(Outcome {
+        report: Some(report),
+        stdout: None,
+        messages,
+    })
+}
+
+/// The flat mesh of a planar map: `(u, v, 0)` per vertex.
+pub fn planar_points(map: &[num_complex::Complex64]) -> Vec<[f64; 3]> {
+    map.iter().map(|z| [z.re, z.im, 0.0]).collect()
+}
+
+/// Texture coordinates of a disk map: `((u + 1)/2, (v + 1)/2)`.
+pub fn disk_uv(map: &[num_complex::Complex64]) -> Vec<[f64; 2]> {
+    map.iter()
+        .map(|z| [(z.re + 1.0) / 2.0, (z.im + 1.0) / 2.0])
+        .collect()
+}

@@ -1,0 +1,238 @@
+//! Outputs of a command: every path checked before anything is computed, and all of them
+//! written or none.
+//!
+//! [`check_command_outputs`] refuses, before reading, an output path that would overwrite an
+//! input or another output (usage error), that has no mesh format where a mesh is written,
+//! or whose directory is missing or not writable. [`Staged`] then writes each output to a
+//! hidden sibling of its target and renames them all into place at [`Staged::commit`]; a
+//! failure before the commit removes what was staged, so no output appears.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use conformap_io::{Format, SourceInfo};
+use conformap_mesh::TriMesh;
+use serde::Serialize;
+
+use crate::failure::Failure;
+use crate::pipeline::args::{InputArgs, OutputArgs};
+
+static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Checks the outputs of `output` and `input.vertex_map` against each other and against
+/// the inputs (`input.mesh` and `other_inputs`, e.g. a map file or a region).
+///
+/// # Errors
+/// [`Failure::Usage`] for an output that names an input or another output, or a mesh
+/// output without a mesh extension; [`Failure::BadInput`] for a directory that does not
+/// exist or cannot be written.
+pub fn check_command_outputs(
+    input: &InputArgs,
+    output: &OutputArgs,
+    other_inputs: &[&Path],
+) -> Result<(), Failure> {
+    let mut outputs: Vec<(&str, &Path, bool)> = vec![("-o", &output.output, true)];
+    if let Some(p) = &output.flat {
+        outputs.push(("--flat", p, true));
+    }
+    if let Some(p) = &output.report {
+        outputs.push(("--report", p, false));
+    }
+    if let Some(p) = &input.vertex_map {
+        outputs.push(("--vertex-map", p, false));
+    }
+    let inputs: Vec<&Path> = std::iter::once(input.mesh.as_path())
+        .chain(other_inputs.iter().copied())
+        .collect();
+    check_outputs(&outputs, &inputs)
+}
+
+/// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`.
+pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Result<(), Failure> {
+    for (k, &(flag, path, mesh)) in outputs.iter().enumerate() {
+        if mesh {
+            Format::from_path(path).map_err(|e| Failure::Usage(format!("{flag}: {e}")))?;
+        }
+        let key = normalized(path);
+        if let Some(input) = inputs.iter().find(|i| normalized(i) == key) {
+            return Err(Failure::Usage(format!(
+                "{flag} {} names the input file {}: it would be overwritten; write the \
+                 output elsewhere",
+                path.display(),
+                input.display()
+            )));
+        }
+        if let Some(&(other, _, _)) = outputs[..k].iter().find(|o| normalized(o.1) == key) {
+            return Err(Failure::Usage(format!(
+                "{other} and {flag} both name {}: one output would overwrite the other",
+                path.display()
+            )));
+        }
+        check_directory(path)?;
+    }
+    Ok(())
+}
+
+/// `path` made absolute, its directory resolved through links where it exists.
+fn normalized(path: &Path) -> PathBuf {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    match (abs.parent(), abs.file_name()) {
+        (Some(dir), Some(name)) => dir
+            .canonicalize()
+            .map_or_else(|_| abs.clone(), |d| d.join(name)),
+        _ => abs,
+    }
+}
+
+/// The directory of `path` exists and accepts a new file.
+fn check_directory(path: &Path) -> Result<(), Failure> {
+    let dir = directory_of(path);
+    if !dir.is_dir() {
+        return Err(Failure::BadInput(
+            format!(
+                "cannot write {}: the directory {} does not exist",
+                path.display(),
+                dir.display()
+            ),
+            Some("create the directory first, or write the output elsewhere".to_string()),
+        ));
+    }
+    let probe = dir.join(format!(
+        ".conformap-probe-{}-{}",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    match std::fs::File::create(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) => Err(Failure::BadInput(
+            format!("cannot write {}: {e}", path.display()),
+            Some("check the directory's permissions, or write the output elsewhere".into()),
+        )),
+    }
+}
+
+fn directory_of(path: &Path) -> PathBuf {
+    path.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .to_path_buf()
+}
+
+/// Outputs written beside their targets, renamed into place together by [`Staged::commit`]
+/// (dropped uncommitted, they are removed).
+#[derive(Debug, Default)]
+pub struct Staged {
+    files: Vec<(PathBuf, PathBuf)>,
+}
+
+impl Staged {
+    /// No output staged yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A hidden sibling of `target` with the same extension (the writers pick the format
+    /// by extension).
+    fn stage_path(&mut self, target: &Path) -> PathBuf {
+        let name = target
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let staged = directory_of(target).join(format!(
+            ".conformap-stage-{}-{n}-{name}",
+            std::process::id()
+        ));
+        self.files.push((staged.clone(), target.to_path_buf()));
+        staged
+    }
+
+    /// Stages `mesh` with one texture coordinate per vertex (see
+    /// [`conformap_io::write_mesh_with_uv`]).
+    pub fn mesh_with_uv(
+        &mut self,
+        target: &Path,
+        mesh: &TriMesh,
+        uv: &[[f64; 2]],
+        source: Option<&SourceInfo>,
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_mesh_with_uv(&path, mesh, uv, source)
+            .map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages `mesh` with a seamed map (see [`conformap_io::write_mesh_with_corner_uv`]).
+    pub fn mesh_with_corner_uv(
+        &mut self,
+        target: &Path,
+        mesh: &TriMesh,
+        uv: &conformap_io::CornerUv,
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_mesh_with_corner_uv(&path, mesh, uv)
+            .map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages points and triangles (see [`conformap_io::write_flat`]).
+    pub fn flat(
+        &mut self,
+        target: &Path,
+        points: &[[f64; 3]],
+        faces: &[[u32; 3]],
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_flat(&path, points, faces).map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages a text file.
+    pub fn text(&mut self, target: &Path, text: &str) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        std::fs::write(&path, text)
+            .map_err(|e| Failure::input(format!("cannot write {}: {e}", target.display())))
+    }
+
+    /// Stages `value` as pretty JSON.
+    pub fn json(&mut self, target: &Path, value: &impl Serialize) -> Result<(), Failure> {
+        let text = serde_json::to_string_pretty(value)
+            .map_err(|e| Failure::Numerical(format!("cannot serialize the report: {e}")))?;
+        self.text(target, &(text + "\n"))
+    }
+
+    /// Renames every staged file onto its target.
+    pub fn commit(mut self) -> Result<(), Failure> {
+        let files = std::mem::take(&mut self.files);
+        for (k, (staged, target)) in files.iter().enumerate() {
+            if let Err(e) = std::fs::rename(staged, target) {
+                for (rest, _) in &files[k..] {
+                    let _ = std::fs::remove_file(rest);
+                }
+                return Err(Failure::input(format!(
+                    "cannot write {}: {e}",
+                    target.display()
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        for (staged, _) in &self.files {
+            let _ = std::fs::remove_file(staged);
+        }
+    }
+}
+
+/// A write failure that names the target, not the staging file.
+fn renamed(f: Failure, staged: &Path, target: &Path) -> Failure {
+    let (s, t) = (staged.display().to_string(), target.display().to_string());
+    match f {
+        Failure::BadInput(m, h) => Failure::BadInput(m.replace(&s, &t), h),
+        Failure::Usage(m) => Failure::Usage(m.replace(&s, &t)),
+        Failure::Numerical(m) => Failure::Numerical(m.replace(&s, &t)),
+    }
+}

@@ -1,0 +1,110 @@
+//! The cohomology basis dual to the tree–cotree generators, and the two bilinear forms of
+//! closed 1-forms: the wedge integral `∫ α ∧ β` and the L² inner product `∫ α ∧ *β`.
+//!
+//! A 1-form is one value per edge of [`conformap_mesh::EdgeIndex`] (the integral along the
+//! edge in its reference orientation). A closed form is the differential of a linear function
+//! on each face, so both integrals are exact face sums.
+
+use std::collections::VecDeque;
+
+use conformap_mesh::{HomologyBasis, TriMesh};
+use conformap_operators::corner_cotangents;
+
+/// A real 1-form: one value per edge.
+pub type Cochain = Vec<f64>;
+
+/// The closed 1-forms `ω_i`, one per generator, with `ω_i(e_j) = δ_ij` on the generator
+/// edges, 0 on the tree, and the cotree edges fixed by closedness (`dω = 0` on every face),
+/// peeled from the leaves of the dual tree to its root. Each `ω_i` integrates to `δ_ij`
+/// along generator loop `j` (the loop crosses only tree edges and `e_j`), so the basis is
+/// dual to the homology basis and no `ω_i` is exact.
+///
+/// Returns the forms and the largest `|dω|` left on the root face of the dual tree (which
+/// closedness on all other faces determines; rounding level on a closed surface).
+pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>, f64) {
+    let edges = &basis.edges;
+    let opp = mesh.opposite_halfedges();
+    let nf = mesh.num_faces();
+    // BFS over the dual tree from face 0: the order and the half-edge of each face that
+    // crosses to its parent
+    let mut parent_h = vec![u32::MAX; nf];
+    let mut seen = vec![false; nf];
+    let mut order = Vec::with_capacity(nf);
+    let mut queue = VecDeque::from([0usize]);
+    seen[0] = true;
+    while let Some(f) = queue.pop_front() {
+        order.push(f);
+        for k in 0..3 {
+            let h = 3 * f + k;
+            if !basis.in_cotree[edges.edge_of[h] as usize] {
+                continue;
+            }
+            let o = opp[h] as usize;
+            let g = o / 3;
+            if !seen[g] {
+                seen[g] = true;
+                parent_h[g] = o as u32;
+                queue.push_back(g);
+            }
+        }
+    }
+    let mut forms = Vec::with_capacity(basis.generators.len());
+    let mut root_residual = 0.0f64;
+    for gen in &basis.generators {
+        let mut w = vec![0.0; edges.len()];
+        w[gen.edge as usize] = 1.0;
+        for &f in order.iter().skip(1).rev() {
+            let ph = parent_h[f] as usize;
+            let others: f64 = (0..3)
+                .map(|k| 3 * f + k)
+                .filter(|&h| h != ph)
+                .map(|h| edges.on_halfedge(&w, h))
+                .sum();
+            // sign(ph) · w[e] + others = 0
+            w[edges.edge_of[ph] as usize] = -others * edges.sign(ph);
+        }
+        let root: f64 = (0..3).map(|k| edges.on_halfedge(&w, k)).sum();
+        root_residual = root_residual.max(root.abs());
+        forms.push(w);
+    }
+    (forms, root_residual)
+}
+
+/// The cotangent weight `½(cot α + cot β)` of every edge (the negated off-diagonal of the
+/// cotangent Laplacian, CEM Eq. 6; one angle's half on a boundary edge).
+pub fn edge_weights(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<f64> {
+    let mut w = vec![0.0; basis.edges.len()];
+    for (f, c) in corner_cotangents(mesh).iter().enumerate() {
+        for k in 0..3 {
+            // the corner k faces the half-edge from corner k + 1 to corner k + 2
+            let h = 3 * f + (k + 1) % 3;
+            w[basis.edges.edge_of[h] as usize] += 0.5 * c[k];
+        }
+    }
+    w
+}
+
+/// `∫ α ∧ *β = Σ_e w_e α(e) β(e)` for closed forms: the L² inner product (the cotangent
+/// formula for the Dirichlet energy of the face-wise linear primitives).
+pub fn inner_product(weights: &[f64], a: &[f64], b: &[f64]) -> f64 {
+    weights
+        .iter()
+        .zip(a.iter().zip(b))
+        .map(|(w, (x, y))| w * x * y)
+        .sum()
+}
+
+/// `∫ α ∧ β` for closed forms over the faces in `faces`: on face `(v0, v1, v2)` with
+/// `a_k = α(v0 → v_k)`, `b_k = β(v0 → v_k)` it is `½(a_1 b_2 − a_2 b_1)`, the signed area of
+/// the face's image under the primitive `(∫α, ∫β)`.
+pub fn wedge(basis: &HomologyBasis, faces: std::ops::Range<usize>, a: &[f64], b: &[f64]) -> f64 {
+    let e = &basis.edges;
+    faces
+        .map(|f| {
+            // α(v0 → v1) = α(h0), α(v0 → v2) = −α(h2)
+            let (a1, a2) = (e.on_halfedge(a, 3 * f), -e.on_halfedge(a, 3 * f + 2));
+            let (b1, b2) = (e.on_halfedge(b, 3 * f), -e.on_halfedge(b, 3 * f + 2));
+            0.5 * (a1 * b2 - a2 * b1)
+        })
+        .sum()
+}

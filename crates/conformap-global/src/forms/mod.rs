@@ -1,0 +1,38 @@
+//! Holomorphic 1-forms of surfaces of genus ≥ 1 and the global conformal parameterization
+//! they induce (Jin, Wang, Yau, Gu 2004, §3.1, building on Gu and Yau 2003).
+//!
+//! Module map:
+//! - `dense.rs`: small dense linear algebra (inverse, Jacobi eigen, matrix functions).
+//! - `cohomology.rs`: the closed basis dual to the tree–cotree generators, `∫ α ∧ β` and
+//!   `∫ α ∧ *β`.
+//! - `harmonic.rs`: harmonic projection, one factorization for all `2g` forms.
+//! - `conjugate.rs`: the Gu–Yau wedge system and its nearest exact complex structure
+//!   ([`ConjugateMethod`]).
+//! - `periods.rs`: holomorphic basis, period matrix, bilinear residual, τ
+//!   ([`reduce_modulus`]).
+//! - `layout.rs`: integration over the fundamental domain, one UV per corner.
+//! - `zeros.rs`: zeros by winding ([`ZeroReport`]), conformal factor (Eq. 12).
+//! - `quality.rs`: angle and area distortion, the scale-free uniformity energy
+//!   ([`LayoutMetrics`]).
+//! - `options.rs`, `global_map.rs`: the entry point [`global_map`] → [`GlobalMap`].
+
+mod cohomology;
+mod conjugate;
+mod dense;
+mod global_map;
+mod harmonic;
+mod layout;
+mod options;
+mod periods;
+mod quality;
+mod zeros;
+
+#[cfg(test)]
+mod tests;
+
+pub use conjugate::ConjugateMethod;
+pub use global_map::{global_map, GlobalMap, GlobalTimings};
+pub use options::GlobalMapOptions;
+pub use periods::{reduce_modulus, MODULUS_MAX_STEPS};
+pub use quality::LayoutMetrics;
+pub use zeros::{Zero, ZeroReport};

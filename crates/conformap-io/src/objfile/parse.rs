@@ -1,0 +1,427 @@
+//! Parsing one chunk of an OBJ text: statements checked, numbers parsed (correctly rounded,
+//! `fast-float2`), face indices resolved and polygons fan-triangulated, each element with
+//! its line.
+//!
+//! Positive indices may refer forward and negative ones count back from the elements so
+//! far, so a chunk needs the counts before it and in the whole file: [`count`] gives them
+//! per chunk (a cheap first pass), [`parse_chunk`] does the rest.
+
+use super::lines::{is_blank, Lines};
+use crate::error::ObjProblem;
+
+/// Marks a face corner without a texture coordinate.
+pub(crate) const NO_UV: u32 = u32::MAX;
+
+/// Statements that are valid OBJ but carry nothing this reader uses.
+const IGNORED: &[&[u8]] = &[
+    b"o",
+    b"g",
+    b"s",
+    b"mg",
+    b"usemtl",
+    b"mtllib",
+    b"usemap",
+    b"maplib",
+    b"lod",
+    b"bevel",
+    b"c_interp",
+    b"d_interp",
+    b"shadow_obj",
+    b"trace_obj",
+    b"vp",
+];
+/// Free-form geometry and point/line elements: valid OBJ, ignored with a note.
+const IGNORED_NOTED: &[&[u8]] = &[
+    b"p", b"l", b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm", b"trim",
+    b"hole", b"scrv", b"sp", b"end", b"con", b"ctech", b"stech",
+];
+
+/// Lines and `v`/`vt`/`vn` statements of a chunk (or, summed, of the text before it).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Counts {
+    pub(crate) lines: usize,
+    pub(crate) v: usize,
+    pub(crate) vt: usize,
+    pub(crate) vn: usize,
+}
+
+impl Counts {
+    pub(crate) fn add(self, o: Self) -> Self {
+        Self {
+            lines: self.lines + o.lines,
+            v: self.v + o.v,
+            vt: self.vt + o.vt,
+            vn: self.vn + o.vn,
+        }
+    }
+}
+
+/// What a chunk yields; line numbers are the file's (1-based).
+#[derive(Debug, Default)]
+pub(crate) struct Parsed {
+    pub(crate) positions: Vec<[f64; 3]>,
+    pub(crate) vertex_lines: Vec<usize>,
+    pub(crate) texcoords: Vec<[f64; 2]>,
+    /// Triangles, 0-based global vertex indices.
+    pub(crate) faces: Vec<[u32; 3]>,
+    /// 0-based global `vt` index of each triangle corner, [`NO_UV`] if none.
+    pub(crate) face_uv: Vec<[u32; 3]>,
+    pub(crate) face_lines: Vec<usize>,
+    /// Point, line and free-form statements ignored.
+    pub(crate) noted: usize,
+    /// The chunk's first offending line; parsing stops there.
+    pub(crate) error: Option<(usize, ObjProblem)>,
+}
+
+/// The first word of a line and the rest.
+fn split_keyword(line: &[u8]) -> Option<(&[u8], &[u8])> {
+    let start = line.iter().position(|&b| !is_blank(b))?;
+    let rest = &line[start..];
+    let end = rest.iter().position(|&b| is_blank(b)).unwrap_or(rest.len());
+    Some((&rest[..end], &rest[end..]))
+}
+
+/// The next blank-separated word of `s`, advancing `s` past it.
+fn next_word<'a>(s: &mut &'a [u8]) -> Option<&'a [u8]> {
+    let start = s.iter().position(|&b| !is_blank(b))?;
+    let rest = &s[start..];
+    let end = rest.iter().position(|&b| is_blank(b)).unwrap_or(rest.len());
+    *s = &rest[end..];
+    Some(&rest[..end])
+}
+
+/// The first pass: lines and element counts of a chunk.
+pub(crate) fn count(chunk: &[u8]) -> Counts {
+    let mut c = Counts::default();
+    let mut lines = Lines::new(chunk);
+    for line in lines.by_ref() {
+        match split_keyword(&line.text) {
+            Some((b"v", _)) => c.v += 1,
+            Some((b"vt", _)) => c.vt += 1,
+            Some((b"vn", _)) => c.vn += 1,
+            _ => {}
+        }
+    }
+    c.lines = lines.physical();
+    c
+}
+
+/// Parses a chunk. `before`: lines and elements before it; `total`: in the whole file.
+pub(crate) fn parse_chunk(chunk: &[u8], before: Counts, total: Counts) -> Parsed {
+    let mut p = Parsed::default();
+    let mut seen = before;
+    let mut corners: Vec<(u32, u32)> = Vec::new();
+    for line in Lines::new(chunk) {
+        let lineno = before.lines + line.index + 1;
+        if let Err(problem) = statement(&line.text, lineno, &mut seen, total, &mut p, &mut corners)
+        {
+            let problem = if std::str::from_utf8(&line.text).is_err() {
+                ObjProblem::NotUtf8
+            } else {
+                problem
+            };
+            p.error = Some((lineno, problem));
+            break;
+        }
+    }
+    p
+}
+
+fn statement(
+    line: &[u8],
+    lineno: usize,
+    seen: &mut Counts,
+    total: Counts,
+    p: &mut Parsed,
+    corners: &mut Vec<(u32, u32)>,
+) -> Result<(), ObjProblem> {
+    let Some((keyword, mut rest)) = split_keyword(line) else {
+        return Ok(());
+    };
+    match keyword {
+        b"v" => {
+            let mut x = [0.0; 6];
+            let n = numbers("v", &mut rest, &mut x, &[3, 4, 6])?;
+            let mut pos = [x[0], x[1], x[2]];
+            if n == 4 {
+                // homogeneous `x y z w`: the point is (x, y, z) / w
+                if x[3] == 0.0 {
+                    return Err(bad_number("v"));
+                }
+                pos = pos.map(|c| c / x[3]);
+            }
+            p.positions.push(pos);
+            p.vertex_lines.push(lineno);
+            seen.v += 1;
+        }
+        b"vt" => {
+            let mut x = [0.0; 3];
+            numbers("vt", &mut rest, &mut x, &[2, 3])?;
+            p.texcoords.push([x[0], x[1]]);
+            seen.vt += 1;
+        }
+        b"vn" => {
+            let mut x = [0.0; 3];
+            numbers("vn", &mut rest, &mut x, &[3])?;
+            seen.vn += 1;
+        }
+        b"f" => {
+            corners.clear();
+            while let Some(token) = next_word(&mut rest) {
+                corners.push(parse_corner(token, *seen, total)?);
+            }
+            if corners.len() < 3 {
+                return Err(ObjProblem::TooFewCorners {
+                    found: corners.len(),
+                });
+            }
+            for w in 1..corners.len() - 1 {
+                let (a, b, c) = (corners[0], corners[w], corners[w + 1]);
+                p.faces.push([a.0, b.0, c.0]);
+                p.face_uv.push([a.1, b.1, c.1]);
+                p.face_lines.push(lineno);
+            }
+        }
+        k if k.first() == Some(&b'#') || IGNORED.contains(&k) => {}
+        k if IGNORED_NOTED.contains(&k) => p.noted += 1,
+        k => {
+            let keyword = std::str::from_utf8(k).map_err(|_| ObjProblem::NotUtf8)?;
+            return Err(ObjProblem::UnknownStatement {
+                keyword: keyword.chars().take(40).collect(),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn bad_number(keyword: &str) -> ObjProblem {
+    ObjProblem::BadNumber {
+        keyword: keyword.to_owned(),
+    }
+}
+
+/// Parses every value of a `v`/`vt`/`vn` line into `out` (its length is the most values
+/// allowed); returns how many there are. The count is checked before the numbers, as
+/// [`ObjProblem::WrongValueCount`] is the more useful message for a short line.
+fn numbers(
+    keyword: &str,
+    rest: &mut &[u8],
+    out: &mut [f64],
+    allowed: &[usize],
+) -> Result<usize, ObjProblem> {
+    let mut n = 0;
+    let mut bad = false;
+    while let Some(token) = next_word(rest) {
+        if let Some(slot) = out.get_mut(n) {
+            match fast_float2::parse::<f64, _>(token) {
+                Ok(x) => *slot = x,
+                Err(_) => bad = true,
+            }
+        }
+        n += 1;
+    }
+    if !allowed.contains(&n) {
+        return Err(ObjProblem::WrongValueCount {
+            keyword: keyword.to_owned(),
+            found: n,
+        });
+    }
+    if bad {
+        return Err(bad_number(keyword));
+    }
+    Ok(n)
+}
+
+/// Parses `v`, `v/vt`, `v//vn` or `v/vt/vn`; returns the 0-based vertex and `vt` indices.
+fn parse_corner(token: &[u8], seen: Counts, total: Counts) -> Result<(u32, u32), ObjProblem> {
+    let bad = || ObjProblem::BadCorner {
+        token: String::from_utf8_lossy(token).chars().take(40).collect(),
+    };
+    let mut parts = token.split(|&b| b == b'/');
+    let pv = parts.next().filter(|p| !p.is_empty()).ok_or_else(bad)?;
+    let pvt = parts.next().filter(|p| !p.is_empty());
+    let pvn = parts.next().filter(|p| !p.is_empty());
+    if parts.next().is_some() {
+        return Err(bad());
+    }
+    let vi = resolve(parse_int(pv).ok_or_else(bad)?, (seen.v, total.v), "vertex")?;
+    let ti = match pvt {
+        Some(p) => resolve(
+            parse_int(p).ok_or_else(bad)?,
+            (seen.vt, total.vt),
+            "texture coordinate",
+        )?,
+        None => NO_UV,
+    };
+    if let Some(p) = pvn {
+        resolve(parse_int(p).ok_or_else(bad)?, (seen.vn, total.vn), "normal")?;
+    }
+    Ok((vi, ti))
+}
+
+/// An `i64` as `str::parse` reads it (optional sign, decimal digits); `None` on overflow.
+fn parse_int(s: &[u8]) -> Option<i64> {
+    let (negative, digits) = match s {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, s),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut x: i64 = 0;
+    for &d in digits {
+        if !d.is_ascii_digit() {
+            return None;
+        }
+        let d = i64::from(d - b'0');
+        x = x.checked_mul(10)?;
+        x = if negative {
+            x.checked_sub(d)?
+        } else {
+            x.checked_add(d)?
+        };
+    }
+    Some(x)
+}
+
+/// Resolves a 1-based or negative (relative) OBJ index to a 0-based one.
+fn resolve(
+    index: i64,
+    (seen, total): (usize, usize),
+    what: &'static str,
+) -> Result<u32, ObjProblem> {
+    let out = |count| ObjProblem::IndexOutOfRange { what, index, count };
+    let zero_based = match index {
+        0 => return Err(ObjProblem::IndexZero { what }),
+        i if i > 0 => {
+            let k = (i - 1).unsigned_abs();
+            if k >= total as u64 {
+                return Err(out(total));
+            }
+            k
+        }
+        i => {
+            let back = i.unsigned_abs();
+            if back > seen as u64 {
+                return Err(out(seen));
+            }
+            seen as u64 - back
+        }
+    };
+    // NO_UV (u32::MAX) stays free: no real file has 2^32 - 1 elements
+    u32::try_from(zero_based)
+        .ok()
+        .filter(|&k| k != NO_UV)
+        .ok_or_else(|| out(total))
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
+mod tests {
+    use super::*;
+
+    fn one(text: &str) -> Parsed {
+        let total = count(text.as_bytes());
+        parse_chunk(text.as_bytes(), Counts::default(), total)
+    }
+
+    #[test]
+    fn negative_indices_and_fans() {
+        let s = one("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3 -2 -1\n");
+        assert_eq!(s.faces, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(s.face_lines, vec![5, 5]);
+        assert!(s.error.is_none());
+    }
+
+    #[test]
+    fn corner_forms() {
+        let s = one("v 0 0 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 1//1 1/1\n");
+        assert_eq!(s.face_uv, vec![[0, NO_UV, 0]]);
+        let s = one("v 0 0 0\nf 1/1/1/1 1 1\n");
+        assert!(matches!(s.error, Some((2, ObjProblem::BadCorner { .. }))));
+        let s = one("v 0 0 0\nf 1/ 1 x\n");
+        assert!(matches!(s.error, Some((2, ObjProblem::BadCorner { .. }))));
+    }
+
+    #[test]
+    fn hostile_indices_are_errors() {
+        for idx in [
+            "9223372036854775807",
+            "-9223372036854775808",
+            "99999999999999999999",
+        ] {
+            let s = one(&format!("v 0 0 0\nvt 0 0\nf 1/{idx} 1/1 1/1\n"));
+            assert!(s.error.is_some(), "{idx}");
+        }
+    }
+
+    #[test]
+    fn integers_parse_as_str_parse_does() {
+        for s in [
+            "0",
+            "+7",
+            "-12",
+            "9223372036854775807",
+            "-9223372036854775808",
+        ] {
+            assert_eq!(parse_int(s.as_bytes()), s.parse().ok(), "{s}");
+        }
+        for s in ["", "-", "+", "1x", "9223372036854775808", " 1", "--1"] {
+            assert_eq!(parse_int(s.as_bytes()), None, "{s}");
+        }
+    }
+
+    #[test]
+    fn numbers_and_homogeneous_w() {
+        let s = one("v 1 2 3 2\nv 1 2 zero\n");
+        assert_eq!(s.positions, vec![[0.5, 1.0, 1.5]]);
+        assert!(matches!(s.error, Some((2, ObjProblem::BadNumber { .. }))));
+        let s = one("v 1 2 3 0\n");
+        assert!(matches!(s.error, Some((1, ObjProblem::BadNumber { .. }))));
+        let s = one("v 1 2\n");
+        assert!(matches!(
+            s.error,
+            Some((1, ObjProblem::WrongValueCount { found: 2, .. }))
+        ));
+    }
+
+    #[test]
+    fn correctly_rounded_like_the_standard_library() {
+        let tokens = [
+            "0.1",
+            "2.2250738585072011e-308",
+            "4.9e-324",
+            "1.7976931348623157e308",
+            "-0.0",
+            "0.30000000000000004",
+            "123456789012345678901234567890",
+            "1e-400",
+            "inf",
+            "-Infinity",
+            "7.",
+            ".5",
+            "+3E+2",
+        ];
+        for t in tokens {
+            let ours = fast_float2::parse::<f64, _>(t).unwrap();
+            let std: f64 = t.parse().unwrap();
+            assert_eq!(ours.to_bits(), std.to_bits(), "{t}");
+        }
+        for t in ["1e", "e5", "--1", "1.2.3", "0x10", ""] {
+            assert!(fast_float2::parse::<f64, _>(t).is_err(), "{t}");
+            assert!(t.parse::<f64>().is_err(), "{t}");
+        }
+    }
+
+    #[test]
+    fn non_utf8_only_matters_in_statements() {
+        let mut bytes = b"# caf\xe9\no caf\xe9\nv 0 0 0\n".to_vec();
+        let s = parse_chunk(&bytes, Counts::default(), count(&bytes));
+        assert!(s.error.is_none());
+        bytes.extend_from_slice(b"v 1 \xe9 0\n");
+        let total = count(&bytes);
+        let s = parse_chunk(&bytes, Counts::default(), total);
+        assert!(matches!(s.error, Some((4, ObjProblem::NotUtf8))));
+    }
+}
