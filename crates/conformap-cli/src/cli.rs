@@ -3,7 +3,7 @@
 use clap::{Parser, Subcommand};
 
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, sphere::SphereArgs};
+use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs};
 use crate::failure::Failure;
 use crate::pipeline::{run_map, Outcome};
 
@@ -32,6 +32,9 @@ pub enum Command {
     /// Global conformal map of a surface with handles (genus ≥ 1) or several boundary
     /// loops by a holomorphic 1-form: a seamed layout, one `vt` per corner.
     Global(GlobalArgs),
+    /// Morph through two or more disk-like surfaces with landmarks (CEM §6): S1's mesh at
+    /// every frame, on each key surface at its key frame.
+    Morph(MorphArgs),
 }
 
 impl Command {
@@ -47,6 +50,7 @@ impl Command {
             Self::Sphere(args) => run_map(args),
             Self::Mobius(args) => run_map(args),
             Self::Global(args) => run_map(args),
+            Self::Morph(args) => crate::commands::morph::run(args),
         }
     }
 }

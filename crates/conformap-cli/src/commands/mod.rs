@@ -7,5 +7,6 @@ pub mod global;
 pub mod info;
 pub mod metrics;
 pub mod mobius;
+pub mod morph;
 pub mod param;
 pub mod sphere;

@@ -263,7 +263,10 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
             let register_ms = ms(t0);
             let t1 = Instant::now();
             let grid = TriangleGrid::new(&reg.map, surfaces[k].mesh.faces());
-            let locations: Vec<Location> = s1_disk.iter().map(|&z| grid.locate(z)).collect();
+            let mut locations: Vec<Location> = s1_disk.iter().map(|&z| grid.locate(z)).collect();
+            if options.register.mode == LandmarkMode::Hard {
+                pin_landmarks(&mut locations, &surfaces[0], &surfaces[k]);
+            }
             let key = carry(&surfaces[k].mesh, &locations);
             Ok((reg, locations, key, register_ms, ms(t1)))
         })
@@ -330,6 +333,26 @@ fn prepare<'m>(
         disk_ms,
         normalize_ms: ms(t1),
     })
+}
+
+/// Hard landmarks: S1's landmark vertex `j` is located exactly at surface `k`'s landmark
+/// vertex `j` (the registration sends the one onto the other; where the registered disk
+/// folds around a landmark, point location could pick an overlapping face instead).
+fn pin_landmarks(locations: &mut [Location], s1: &Surface, sk: &Surface) {
+    for (&v1, &vk) in s1.landmarks.vertices().iter().zip(sk.landmarks.vertices()) {
+        let found = sk.mesh.faces().iter().enumerate().find_map(|(f, tri)| {
+            tri.iter().position(|&v| v == vk).map(|c| (f, c))
+        });
+        if let Some((face, corner)) = found {
+            let mut bary = [0.0; 3];
+            bary[corner] = 1.0;
+            locations[v1 as usize] = Location {
+                face: face as u32,
+                bary,
+                outside: 0.0,
+            };
+        }
+    }
 }
 
 /// The 3D point of `mesh` at every location.

@@ -43,18 +43,6 @@ pub(crate) struct BoundaryEnergy<'a> {
 }
 
 impl BoundaryEnergy<'_> {
-    /// `½ hᴴ S h + Re(hᴴ (w + pull)) − σ A(h)`: the reduced energy up to a constant.
-    pub fn value(&self, h: &[Complex64]) -> f64 {
-        let nb = h.len();
-        let mut e = 0.0;
-        for c in 0..nb {
-            let col = &self.s[c * nb..(c + 1) * nb];
-            let sh: Complex64 = col.iter().zip(h).map(|(&s, &z)| z * s).sum();
-            e += 0.5 * (h[c].conj() * sh).re + (h[c].conj() * (self.w[c] + self.pull[c])).re;
-        }
-        e - self.sigma * polygon_area(h)
-    }
-
     /// Gauss–Seidel sweeps on `h` (boundary values, on the unit circle), at most
     /// `max_sweeps`, until no vertex moves more than `tol` radians.
     pub fn sweep(&self, h: &mut [Complex64], max_sweeps: usize, tol: f64) -> SweepOutcome {
