@@ -3,7 +3,9 @@
 use clap::{Parser, Subcommand};
 
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs};
+use crate::commands::{
+    global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs,
+};
 use crate::failure::Failure;
 use crate::pipeline::{run_map, Outcome};
 

@@ -49,7 +49,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let all: Vec<Vec<[f64; 3]>> = times.iter().map(|&t| m.frame(t)).collect();
     let frames_ms = t.elapsed().as_secs_f64() * 1e3;
     let diag = surfaces[0].mesh.bbox_diagonal();
-    let steps: Vec<f64> = all.windows(2).map(|w| max_step(&w[0], &w[1]) / diag).collect();
+    let steps: Vec<f64> = all
+        .windows(2)
+        .map(|w| max_step(&w[0], &w[1]) / diag)
+        .collect();
     let degenerate: usize = all
         .iter()
         .map(|p| degenerate_faces(p, m.faces(), diag, DEGENERATE_AREA_REL))

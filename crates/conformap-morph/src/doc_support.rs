@@ -21,7 +21,8 @@ pub const MATERIAL_LANDMARKS: [([f64; 2], &str); 5] = [
 
 /// The height of the surface over material point `(x, y)`: a main bump and a dimple.
 pub fn height(x: f64, y: f64) -> f64 {
-    0.5 * (-(x * x + y * y) / 0.15).exp() - 0.15 * (-((x - 0.3).powi(2) + (y + 0.4).powi(2)) / 0.03).exp()
+    0.5 * (-(x * x + y * y) / 0.15).exp()
+        - 0.15 * (-((x - 0.3).powi(2) + (y + 0.4).powi(2)) / 0.03).exp()
 }
 
 /// A polar grid of `rings` rings, ring `k` with `sectors · k` vertices, boundary radius
@@ -75,7 +76,10 @@ pub fn polar_grid(
 /// The "expression" deformation of the plane applied to the second surface.
 pub fn deform(p: [f64; 2]) -> [f64; 2] {
     let [x, y] = p;
-    [x + 0.08 * x * y + 0.03 * (3.0 * y).sin(), 1.05 * y + 0.06 * (2.0 * x).sin()]
+    [
+        x + 0.08 * x * y + 0.03 * (3.0 * y).sin(),
+        1.05 * y + 0.06 * (2.0 * x).sin(),
+    ]
 }
 
 fn lift(pts: &[[f64; 2]], deformed: bool) -> Vec<[f64; 3]> {
@@ -139,4 +143,3 @@ pub fn two_bumps_with_landmarks() -> ((TriMesh, Landmarks), (TriMesh, Landmarks)
         bump_surface(13, 7, 0.2, |t| 0.95 + 0.05 * (3.0 * t).sin(), true),
     )
 }
-

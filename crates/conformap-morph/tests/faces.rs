@@ -12,7 +12,9 @@ use conformap_morph::quality::{
 use conformap_morph::{morph, Landmarks, Morph, MorphOptions, Surface};
 
 fn surface(dir: &Path, name: &str) -> Surface {
-    let mesh = conformap_io::read_mesh(dir.join(format!("{name}.obj"))).unwrap().mesh;
+    let mesh = conformap_io::read_mesh(dir.join(format!("{name}.obj")))
+        .unwrap()
+        .mesh;
     let text = std::fs::read_to_string(dir.join(format!("{name}.landmarks.txt"))).unwrap();
     Surface::new(mesh, Landmarks::parse(&text).unwrap())
 }
@@ -43,7 +45,11 @@ fn check(surfaces: &[Surface], m: &Morph, frames: usize) -> f64 {
                 point_triangle_distance(*p, f)
             })
             .fold(0.0, f64::max);
-        assert!(far <= 1e-9 * diag, "surface {k}: {:.3e} of the diagonal off", far / diag);
+        assert!(
+            far <= 1e-9 * diag,
+            "surface {k}: {:.3e} of the diagonal off",
+            far / diag
+        );
         let r = &m.report.keys[k];
         let reg = r.registration.as_ref().unwrap();
         assert_eq!(reg.folded_faces, 0, "surface {k}: {:?}", reg.notes);
@@ -54,28 +60,47 @@ fn check(surfaces: &[Surface], m: &Morph, frames: usize) -> f64 {
     // smooth in time, no degenerate face in any frame
     let all: Vec<_> = times.iter().map(|&t| m.frame(t)).collect();
     let diag = s1.bbox_diagonal();
-    let steps: Vec<f64> = all.windows(2).map(|w| max_step(&w[0], &w[1]) / diag).collect();
+    let steps: Vec<f64> = all
+        .windows(2)
+        .map(|w| max_step(&w[0], &w[1]) / diag)
+        .collect();
     let mean = steps.iter().sum::<f64>() / steps.len() as f64;
     let largest = steps.iter().copied().fold(0.0, f64::max);
-    assert!(largest < 3.0 * mean, "a jump: step {largest:.3e} vs mean {mean:.3e}");
+    assert!(
+        largest < 3.0 * mean,
+        "a jump: step {largest:.3e} vs mean {mean:.3e}"
+    );
     for (i, p) in all.iter().enumerate() {
-        assert_eq!(degenerate_faces(p, m.faces(), diag, DEGENERATE_AREA_REL), 0, "frame {i}");
+        assert_eq!(
+            degenerate_faces(p, m.faces(), diag, DEGENERATE_AREA_REL),
+            0,
+            "frame {i}"
+        );
     }
     worst
 }
 
 #[test]
 fn neutral_to_pout_soft_and_hard() {
-    let surfaces = [surface(&fixtures(), "ict_neutral"), surface(&fixtures(), "ict_pout")];
+    let surfaces = [
+        surface(&fixtures(), "ict_neutral"),
+        surface(&fixtures(), "ict_pout"),
+    ];
     let soft = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
     let soft_err = check(&surfaces, &soft, 30);
     // measured 7.0e-2 (λ backed off to 1.5e-2 to avoid folds): see the README
     assert!(soft_err < 0.08, "soft landmark error {soft_err:.3e}");
-    let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks()).unwrap_or_else(|e| panic!("{e}"));
+    let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks())
+        .unwrap_or_else(|e| panic!("{e}"));
     let t = hard.frame_times(30).unwrap();
     let last = hard.frame(t[29]);
     let s2 = &surfaces[1].mesh;
-    for (&a, &b) in surfaces[0].landmarks.vertices().iter().zip(surfaces[1].landmarks.vertices()) {
+    for (&a, &b) in surfaces[0]
+        .landmarks
+        .vertices()
+        .iter()
+        .zip(surfaces[1].landmarks.vertices())
+    {
         let (p, q) = (last[a as usize], s2.positions()[b as usize]);
         let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
         assert!(d <= 1e-9 * s2.bbox_diagonal(), "hard landmark {a}: {d:.3e}");
@@ -86,8 +111,10 @@ fn neutral_to_pout_soft_and_hard() {
 #[ignore = "reads ../shared/morph (the three faces)"]
 fn shared_three_faces_sixty_frames() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/morph");
-    let surfaces: Vec<Surface> =
-        ["ict_neutral", "ict_wry", "ict_pout"].iter().map(|n| surface(&dir, n)).collect();
+    let surfaces: Vec<Surface> = ["ict_neutral", "ict_wry", "ict_pout"]
+        .iter()
+        .map(|n| surface(&dir, n))
+        .collect();
     let m = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
     let worst = check(&surfaces, &m, 60);
     assert!(worst < 0.08, "landmark error {worst:.3e}");

@@ -109,7 +109,8 @@ impl MorphArgs {
                 "--lambda must be a finite number > 0, got {l}"
             )));
         }
-        let is_dir = self.output.is_dir() || self.output.as_os_str().to_string_lossy().ends_with('/');
+        let is_dir =
+            self.output.is_dir() || self.output.as_os_str().to_string_lossy().ends_with('/');
         if is_dir {
             let frames = (0..self.frames)
                 .map(|i| self.output.join(format!("frame_{i:04}.obj")))
@@ -170,8 +171,12 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
     let solve_ms = ms_since(t);
 
     let t = Instant::now();
-    let times = m.frame_times(args.frames).map_err(|e| morph_failure(e, args))?;
-    let key_frames = m.key_frames(args.frames).map_err(|e| morph_failure(e, args))?;
+    let times = m
+        .frame_times(args.frames)
+        .map_err(|e| morph_failure(e, args))?;
+    let key_frames = m
+        .key_frames(args.frames)
+        .map_err(|e| morph_failure(e, args))?;
     let mut staged = Staged::new();
     match &target {
         Target::Frames(paths) => {
@@ -192,7 +197,11 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
             .zip(&surfaces)
             .map(|(p, s)| InputInfo::new(p, &s.mesh))
             .collect(),
-        landmark_files: args.landmarks.iter().map(|p| p.display().to_string()).collect(),
+        landmark_files: args
+            .landmarks
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect(),
         frames: args.frames,
         key_frames,
         morph: m.report.clone(),
@@ -314,9 +323,7 @@ fn morph_failure(e: MorphError, args: &MorphArgs) -> Failure {
         MorphError::TooFewSurfaces { .. } | MorphError::InvalidOption { .. } => {
             Failure::Usage(e.to_string())
         }
-        MorphError::TooFewLandmarks { .. } | MorphError::LandmarkSyntax { .. } => {
-            Failure::input(e)
-        }
+        MorphError::TooFewLandmarks { .. } | MorphError::LandmarkSyntax { .. } => Failure::input(e),
         other => Failure::Numerical(other.to_string()),
     }
 }

@@ -81,7 +81,10 @@ pub fn write_morph_glb(path: impl AsRef<Path>, morph: &MorphGlb<'_>) -> Result<(
 fn check_shapes(m: &MorphGlb<'_>) -> Result<(), String> {
     let n = m.positions.len();
     if let Some((k, t)) = m.targets.iter().enumerate().find(|(_, t)| t.len() != n) {
-        return Err(format!("morph target {k} has {} values for {n} vertices", t.len()));
+        return Err(format!(
+            "morph target {k} has {} values for {n} vertices",
+            t.len()
+        ));
     }
     if m.target_names.len() != m.targets.len() {
         return Err(format!(
@@ -91,10 +94,23 @@ fn check_shapes(m: &MorphGlb<'_>) -> Result<(), String> {
         ));
     }
     if m.weights.len() != m.times.len() {
-        return Err(format!("{} weight rows for {} times", m.weights.len(), m.times.len()));
+        return Err(format!(
+            "{} weight rows for {} times",
+            m.weights.len(),
+            m.times.len()
+        ));
     }
-    if let Some((k, w)) = m.weights.iter().enumerate().find(|(_, w)| w.len() != m.targets.len()) {
-        return Err(format!("weight row {k} has {} values for {} targets", w.len(), m.targets.len()));
+    if let Some((k, w)) = m
+        .weights
+        .iter()
+        .enumerate()
+        .find(|(_, w)| w.len() != m.targets.len())
+    {
+        return Err(format!(
+            "weight row {k} has {} values for {} targets",
+            w.len(),
+            m.targets.len()
+        ));
     }
     if m.times.is_empty() || m.times.windows(2).any(|w| !(w[1] > w[0])) || !m.times[0].is_finite() {
         return Err("animation times must be finite and strictly increasing (at least one)".into());
@@ -250,7 +266,12 @@ mod tests {
     #[test]
     fn a_standard_reader_loads_targets_and_animation() {
         // a 2 × 2 quad, two targets (lift, shear), three keyframes
-        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
         let faces = [[0, 1, 2], [0, 2, 3]];
         let lift = vec![[0.0, 0.0, 0.5]; 4];
         let shear: Vec<[f64; 3]> = positions.iter().map(|p| [0.25 * p[1], 0.0, 0.0]).collect();
@@ -320,12 +341,27 @@ mod tests {
             times: &[0.0],
             weights: &[vec![1.0]],
         };
-        assert!(check_shapes(&m).unwrap_err().contains("morph target 0 has 2 values"));
+        assert!(check_shapes(&m)
+            .unwrap_err()
+            .contains("morph target 0 has 2 values"));
         let bad = vec![vec![[0.0, f64::NAN, 0.0]; 3]];
         let m = MorphGlb { targets: &bad, ..m };
         assert!(check_shapes(&m).is_ok());
-        assert!(matches!(encode_morph_glb(&m), Err(WriteProblem::NonFinite { vertex: 0, .. })));
-        let m = MorphGlb { faces: &[[0, 1, 3]], ..m };
-        assert!(matches!(encode_morph_glb(&m), Err(WriteProblem::FaceIndex { face: 0, index: 3, .. })));
+        assert!(matches!(
+            encode_morph_glb(&m),
+            Err(WriteProblem::NonFinite { vertex: 0, .. })
+        ));
+        let m = MorphGlb {
+            faces: &[[0, 1, 3]],
+            ..m
+        };
+        assert!(matches!(
+            encode_morph_glb(&m),
+            Err(WriteProblem::FaceIndex {
+                face: 0,
+                index: 3,
+                ..
+            })
+        ));
     }
 }

@@ -54,7 +54,10 @@ impl CubicHomotopy {
             reason,
         };
         if times.len() < 2 {
-            return Err(bad(format!("need at least 2 key times, got {}", times.len())));
+            return Err(bad(format!(
+                "need at least 2 key times, got {}",
+                times.len()
+            )));
         }
         if let Some(w) = times
             .windows(2)
@@ -166,7 +169,10 @@ mod tests {
             assert!((d1l - d1r).abs() < 1e-3, "slope jump at {t}: {d1l} {d1r}");
             let d2l = (f(t) - 2.0 * f(t - e) + f(t - 2.0 * e)) / (e * e);
             let d2r = (f(t + 2.0 * e) - 2.0 * f(t + e) + f(t)) / (e * e);
-            assert!((d2l - d2r).abs() < 0.5, "curvature jump at {t}: {d2l} {d2r}");
+            assert!(
+                (d2l - d2r).abs() < 0.5,
+                "curvature jump at {t}: {d2l} {d2r}"
+            );
         }
         // natural ends: second difference → 0
         let d2 = (value(&h, &y, 2.0 * e) - 2.0 * value(&h, &y, e) + value(&h, &y, 0.0)) / (e * e);

@@ -193,7 +193,12 @@ mod tests {
         assert!(l.check_against(0, 8).is_ok());
         assert!(matches!(
             l.check_against(2, 7),
-            Err(MorphError::LandmarkOutOfRange { surface: 2, vertex: 7, vertices: 7, .. })
+            Err(MorphError::LandmarkOutOfRange {
+                surface: 2,
+                vertex: 7,
+                vertices: 7,
+                ..
+            })
         ));
         let twice = parsed("4 a\n1 b\n4 c\n");
         assert_eq!(
@@ -208,14 +213,21 @@ mod tests {
         let named = parsed("4 a\n1 b\n5 b\n");
         assert!(matches!(
             named.check_against(0, 10),
-            Err(MorphError::RepeatedLandmark { first: 1, second: 2, what: "same name", .. })
+            Err(MorphError::RepeatedLandmark {
+                first: 1,
+                second: 2,
+                what: "same name",
+                ..
+            })
         ));
     }
 
     #[test]
     fn names_must_match_in_order() {
         let a = parsed("0 nose\n1 eye\n2 chin\n");
-        assert!(parsed("9 nose\n8 eye\n7 chin\n").check_same_names(1, &a).is_ok());
+        assert!(parsed("9 nose\n8 eye\n7 chin\n")
+            .check_same_names(1, &a)
+            .is_ok());
         assert!(matches!(
             parsed("9 nose\n7 chin\n8 eye\n").check_same_names(1, &a),
             Err(MorphError::LandmarkMismatch { index: 1, .. })

@@ -251,8 +251,12 @@ mod tests {
         // a regular 12-gon fan around the origin, inscribed in the unit circle
         let n = 12;
         let mut pts = vec![Complex64::new(0.0, 0.0)];
-        pts.extend((0..n).map(|k| Complex64::from_polar(1.0, k as f64 * std::f64::consts::TAU / n as f64)));
-        let faces: Vec<[u32; 3]> = (0..n as u32).map(|k| [0, 1 + k, 1 + (k + 1) % n as u32]).collect();
+        pts.extend(
+            (0..n).map(|k| Complex64::from_polar(1.0, k as f64 * std::f64::consts::TAU / n as f64)),
+        );
+        let faces: Vec<[u32; 3]> = (0..n as u32)
+            .map(|k| [0, 1 + k, 1 + (k + 1) % n as u32])
+            .collect();
         let grid = TriangleGrid::new(&pts, &faces);
         for k in 0..500 {
             let z = Complex64::from_polar(0.95 * (k as f64 / 500.0).sqrt(), 0.37 * k as f64);

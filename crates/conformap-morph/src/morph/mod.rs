@@ -278,7 +278,11 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
     for (i, (reg, locs, key, register_ms, locate_ms)) in later.into_iter().enumerate() {
         let k = i + 1;
         let mut r = key_report(k, surfaces, &prepared[k], &homotopy, Some(&key));
-        let snapped: Vec<f64> = locs.iter().map(|l| l.outside).filter(|&d| d > 0.0).collect();
+        let snapped: Vec<f64> = locs
+            .iter()
+            .map(|l| l.outside)
+            .filter(|&d| d > 0.0)
+            .collect();
         r.locate = Some(LocateSummary {
             snapped: snapped.len(),
             max_outside: snapped.iter().copied().fold(0.0, f64::max),
@@ -321,7 +325,8 @@ fn prepare<'m>(
     let disk_err = |source| MorphError::Disk { surface: k, source };
     let t0 = Instant::now();
     let mut problem = DiskProblem::new(&s.mesh).map_err(disk_err)?;
-    let disk = run_disk_method(&mut problem, options.disk_method, &options.disk).map_err(disk_err)?;
+    let disk =
+        run_disk_method(&mut problem, options.disk_method, &options.disk).map_err(disk_err)?;
     let disk_ms = ms(t0);
     let t1 = Instant::now();
     let lm = s.landmarks.vertices();
@@ -340,9 +345,12 @@ fn prepare<'m>(
 /// folds around a landmark, point location could pick an overlapping face instead).
 fn pin_landmarks(locations: &mut [Location], s1: &Surface, sk: &Surface) {
     for (&v1, &vk) in s1.landmarks.vertices().iter().zip(sk.landmarks.vertices()) {
-        let found = sk.mesh.faces().iter().enumerate().find_map(|(f, tri)| {
-            tri.iter().position(|&v| v == vk).map(|c| (f, c))
-        });
+        let found = sk
+            .mesh
+            .faces()
+            .iter()
+            .enumerate()
+            .find_map(|(f, tri)| tri.iter().position(|&v| v == vk).map(|c| (f, c)));
         if let Some((face, corner)) = found {
             let mut bary = [0.0; 3];
             bary[corner] = 1.0;
@@ -407,7 +415,11 @@ fn key_report(
         diagonal,
         disk: DiskSummary {
             method: r.method.clone(),
-            conformal_energy: r.energy_history.get(r.best_iteration).copied().unwrap_or(f64::NAN),
+            conformal_energy: r
+                .energy_history
+                .get(r.best_iteration)
+                .copied()
+                .unwrap_or(f64::NAN),
             iterations: r.iterations,
             converged: r.converged,
             notes: r.notes.clone(),

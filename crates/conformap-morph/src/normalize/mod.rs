@@ -106,7 +106,12 @@ mod tests {
         ];
         assert!(matches!(
             normalize_disk_map(&map, 1, 2, 3),
-            Err(MorphError::LandmarkOnBoundary { surface: 3, index: 0, vertex: 1, .. })
+            Err(MorphError::LandmarkOnBoundary {
+                surface: 3,
+                index: 0,
+                vertex: 1,
+                ..
+            })
         ));
         assert!(matches!(
             normalize_disk_map(&map, 0, 1, 0),

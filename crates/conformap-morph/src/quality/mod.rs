@@ -63,7 +63,11 @@ pub fn flipped_against_key(
             for &v in f.iter() {
                 let kf = &key_faces[locations[v as usize].face as usize];
                 let n = unit(face_normal(key_positions, kf));
-                reference = [reference[0] + n[0], reference[1] + n[1], reference[2] + n[2]];
+                reference = [
+                    reference[0] + n[0],
+                    reference[1] + n[1],
+                    reference[2] + n[2],
+                ];
             }
             !(dot(face_normal(frame, f), reference) > 0.0)
         })

@@ -193,7 +193,10 @@ pub fn register_disk(
         };
         let outcome = energy.sweep(&mut hb, options.max_sweeps, options.sweep_tol);
         let h = system.full_map(&pen, &hb, targets);
-        if let Some(vertex) = h.iter().position(|z| !(z.re.is_finite() && z.im.is_finite())) {
+        if let Some(vertex) = h
+            .iter()
+            .position(|z| !(z.re.is_finite() && z.im.is_finite()))
+        {
             return Err(MorphError::NonFinite { surface, vertex });
         }
         let folds = folded_faces(mesh.faces(), &h, sigma);
@@ -213,10 +216,7 @@ pub fn register_disk(
         }
     }
     let Some((map, folds, outcome, used)) = best else {
-        return Err(MorphError::NonFinite {
-            surface,
-            vertex: 0,
-        });
+        return Err(MorphError::NonFinite { surface, vertex: 0 });
     };
     if folds > 0 {
         notes.push(format!(

@@ -212,7 +212,11 @@ impl<'p, 'm> LandmarkSystem<'p, 'm> {
 /// `M⁻¹ r` for complex `r` (real and imaginary parts as two columns).
 fn solve_m(chol: &DenseCholesky, r: &[Complex64]) -> Vec<Complex64> {
     let m = r.len();
-    let mut buf: Vec<f64> = r.iter().map(|z| z.re).chain(r.iter().map(|z| z.im)).collect();
+    let mut buf: Vec<f64> = r
+        .iter()
+        .map(|z| z.re)
+        .chain(r.iter().map(|z| z.im))
+        .collect();
     chol.solve_in_place(&mut buf, 2);
     (0..m).map(|k| Complex64::new(buf[k], buf[m + k])).collect()
 }
