@@ -60,5 +60,6 @@ pub use morph::{
 pub use normalize::{normalize_disk_map, Normalized, NORMALIZE_BOUNDARY_TOL};
 pub use register::{
     folded_faces, register_disk, LandmarkMode, RegisterOptions, Registration, RegistrationReport,
-    DEFAULT_LAMBDA, LAMBDA_BACKOFF, MAX_LAMBDA_BACKOFFS, REGISTER_MAX_SWEEPS, REGISTER_SWEEP_TOL,
+    DEFAULT_LAMBDA, LAMBDA_BACKOFF, LAMBDA_BISECTIONS, MAX_LAMBDA_BACKOFFS, REGISTER_MAX_SWEEPS,
+    REGISTER_SWEEP_TOL,
 };

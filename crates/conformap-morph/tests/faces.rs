@@ -53,8 +53,9 @@ fn check(surfaces: &[Surface], m: &Morph, frames: usize) -> f64 {
         let r = &m.report.keys[k];
         let reg = r.registration.as_ref().unwrap();
         assert_eq!(reg.folded_faces, 0, "surface {k}: {:?}", reg.notes);
-        // no fold patch: flipped faces of the key frame are isolated slivers (≤ 2 joined)
-        assert!(r.key_frame_largest_flip_patch <= 2, "surface {k}: {r:?}");
+        // no fold patch: flipped faces of the key frame are slivers, at most 3 joined
+        // (measured: 3 on wry and on pout with the default λ after the back-off)
+        assert!(r.key_frame_largest_flip_patch <= 3, "surface {k}: {r:?}");
         worst = worst.max(r.landmark_error_max_rel);
     }
     // smooth in time, no degenerate face in any frame
@@ -88,8 +89,8 @@ fn neutral_to_pout_soft_and_hard() {
     ];
     let soft = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
     let soft_err = check(&surfaces, &soft, 30);
-    // measured 7.0e-2 (λ backed off to 1.5e-2 to avoid folds): see the README
-    assert!(soft_err < 0.08, "soft landmark error {soft_err:.3e}");
+    // measured 5.0e-2 (λ backed off to 4.3e-2 to avoid folds): see the README
+    assert!(soft_err < 0.06, "soft landmark error {soft_err:.3e}");
     let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks())
         .unwrap_or_else(|e| panic!("{e}"));
     let t = hard.frame_times(30).unwrap();
@@ -117,6 +118,6 @@ fn shared_three_faces_sixty_frames() {
         .collect();
     let m = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
     let worst = check(&surfaces, &m, 60);
-    assert!(worst < 0.08, "landmark error {worst:.3e}");
+    assert!(worst < 0.06, "landmark error {worst:.3e}");
     assert_eq!(m.key_frames(60).unwrap(), vec![0, 30, 59]);
 }
