@@ -4,7 +4,9 @@ use clap::{Parser, Subcommand};
 
 use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::{global::GlobalArgs, mobius::MobiusArgs, sphere::SphereArgs};
+use crate::commands::{
+    global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs,
+};
 use crate::failure::Failure;
 use crate::pipeline::{run_map, Outcome};
 
@@ -41,6 +43,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Run `disk` or `sphere` over many meshes: one JSON line per input, a summary line.
     Batch(BatchArgs),
+    /// Morph through two or more disk-like surfaces with landmarks (CEM §6): S1's mesh at
+    /// every frame, on each key surface at its key frame.
+    Morph(MorphArgs),
 }
 
 impl Command {
@@ -58,6 +63,7 @@ impl Command {
             Self::Global(args) => run_map(args),
             Self::Render(args) => crate::commands::render::run(args),
             Self::Batch(args) => crate::commands::batch::run(args),
+            Self::Morph(args) => crate::commands::morph::run(args),
         }
     }
 }

@@ -10,6 +10,7 @@ pub mod global;
 pub mod info;
 pub mod metrics;
 pub mod mobius;
+pub mod morph;
 pub mod param;
 pub mod render;
 pub mod sphere;

@@ -200,6 +200,17 @@ impl Staged {
         crate::pipeline::pictures::write_png(&path, image).map_err(|e| renamed(e, &path, target))
     }
 
+    /// Stages a GLB with morph targets and an animation (see
+    /// [`conformap_io::write_morph_glb`]).
+    pub fn morph_glb(
+        &mut self,
+        target: &Path,
+        morph: &conformap_io::MorphGlb<'_>,
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_morph_glb(&path, morph).map_err(|e| renamed(e.into(), &path, target))
+    }
+
     /// Stages a text file.
     pub fn text(&mut self, target: &Path, text: &str) -> Result<(), Failure> {
         let path = self.stage_path(target);

@@ -2,10 +2,12 @@
 
 mod accessor;
 mod buffers;
+mod morph;
 mod read;
 mod weld;
 mod write;
 
+pub use morph::{encode_morph_glb, write_morph_glb, MorphGlb};
 pub(crate) use read::read_gltf_raw;
 pub(crate) use weld::{face_origin, vertex_origin, PrimRange};
 pub(crate) use write::encode_gltf;

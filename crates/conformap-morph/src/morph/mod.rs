@@ -1,0 +1,444 @@
+//! The whole morph (CEM §6): disk maps, normalization, registration onto S1's disk,
+//! location of S1's vertices on every key surface, and the spline homotopy.
+
+mod report;
+
+use std::time::Instant;
+
+use conformap_disk::{run_disk_method, DiskMap, DiskMethod, DiskOptions, DiskProblem};
+use conformap_mesh::TriMesh;
+use num_complex::Complex64;
+use rayon::prelude::*;
+
+use crate::quality::{flipped_against_key, largest_patch};
+use crate::{
+    normalize_disk_map, register_disk, CubicHomotopy, LandmarkMode, Landmarks, Location,
+    MorphError, RegisterOptions, TriangleGrid,
+};
+pub use report::{DiskSummary, KeyReport, KeyTimings, LocateSummary, MorphReport};
+
+/// One key surface: a disk-like mesh and its landmarks.
+#[derive(Debug, Clone)]
+pub struct Surface {
+    /// The mesh (one boundary loop, genus 0).
+    pub mesh: TriMesh,
+    /// Its landmarks (the same names in the same order on every surface).
+    pub landmarks: Landmarks,
+}
+
+impl Surface {
+    /// A surface from its mesh and landmarks.
+    pub fn new(mesh: TriMesh, landmarks: Landmarks) -> Self {
+        Self { mesh, landmarks }
+    }
+}
+
+/// Options of [`morph`].
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct MorphOptions {
+    /// The registration (λ or hard landmarks, sweeps). Default:
+    /// [`RegisterOptions::DEFAULT`] (λ = [`crate::DEFAULT_LAMBDA`]).
+    pub register: RegisterOptions,
+    /// Key times, one per surface, strictly increasing. Default: `None` (evenly spaced
+    /// on `[0, 1]`).
+    pub key_times: Option<Vec<f64>>,
+    /// The disk map's method. Default: [`DiskMethod::CcemQn`] (the disk crate's default).
+    pub disk_method: DiskMethod,
+    /// The disk map's options. Default: [`DiskOptions::DEFAULT`].
+    pub disk: DiskOptions,
+}
+
+impl MorphOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        register: RegisterOptions::DEFAULT,
+        key_times: None,
+        disk_method: DiskMethod::CcemQn,
+        disk: DiskOptions::DEFAULT,
+    };
+
+    /// Soft landmarks with weight `lambda` (Eq. 34).
+    #[must_use]
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.register.mode = LandmarkMode::Soft(lambda);
+        self
+    }
+
+    /// Hard landmarks: exactly on their targets.
+    #[must_use]
+    pub fn with_hard_landmarks(mut self) -> Self {
+        self.register.mode = LandmarkMode::Hard;
+        self
+    }
+
+    /// Key times (one per surface).
+    #[must_use]
+    pub fn with_key_times(mut self, times: Vec<f64>) -> Self {
+        self.key_times = Some(times);
+        self
+    }
+}
+
+impl Default for MorphOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A computed morph: S1's connectivity, its vertices' positions on every key surface, the
+/// spline through them, and the report.
+#[derive(Debug, Clone)]
+pub struct Morph {
+    faces: Vec<[u32; 3]>,
+    keys: Vec<Vec<[f64; 3]>>,
+    locations: Vec<Vec<Location>>,
+    homotopy: CubicHomotopy,
+    /// What was done, per key surface.
+    pub report: MorphReport,
+}
+
+impl Morph {
+    /// S1's faces (the connectivity of every frame).
+    pub fn faces(&self) -> &[[u32; 3]] {
+        &self.faces
+    }
+
+    /// `keys()[k][v]`: the position of S1's vertex `v` on key surface `k` (`keys()[0]` is
+    /// S1 itself).
+    pub fn keys(&self) -> &[Vec<[f64; 3]>] {
+        &self.keys
+    }
+
+    /// `locations()[k][v]`: where S1's vertex `v` lies on surface `k` (a face of surface
+    /// `k` and barycentric coordinates; empty for `k = 0`).
+    pub fn locations(&self) -> &[Vec<Location>] {
+        &self.locations
+    }
+
+    /// The spline basis (key times, weights).
+    pub fn homotopy(&self) -> &CubicHomotopy {
+        &self.homotopy
+    }
+
+    /// The positions of S1's vertices at time `t` (between the first and last key
+    /// times): `Σ_k φ_k(t) P_k`, exactly `P_k` at key time `k`.
+    pub fn frame(&self, t: f64) -> Vec<[f64; 3]> {
+        let w = self.homotopy.weights(t);
+        let n = self.keys[0].len();
+        (0..n)
+            .map(|v| {
+                let mut p = [0.0; 3];
+                for (wk, key) in w.iter().zip(&self.keys) {
+                    for c in 0..3 {
+                        p[c] += wk * key[v][c];
+                    }
+                }
+                p
+            })
+            .collect()
+    }
+
+    /// The frame index of every key surface for `n` frames: `round(k(n−1)/(K−1))` for
+    /// evenly spaced keys, in general `round((t_k − t_0)/(t_last − t_0) · (n−1))`.
+    ///
+    /// # Errors
+    /// [`MorphError::InvalidOption`] if two keys fall on the same frame (`n` too small).
+    pub fn key_frames(&self, n: usize) -> Result<Vec<usize>, MorphError> {
+        let t = self.homotopy.times();
+        let (t0, t1) = (t[0], t[t.len() - 1]);
+        let idx: Vec<usize> = t
+            .iter()
+            .map(|&tk| ((tk - t0) / (t1 - t0) * (n.max(1) - 1) as f64).round() as usize)
+            .collect();
+        if n < 2 || idx.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(MorphError::InvalidOption {
+                name: "frames",
+                reason: format!(
+                    "{n} frames cannot hold the {} key surfaces on distinct frames",
+                    t.len()
+                ),
+            });
+        }
+        Ok(idx)
+    }
+
+    /// The time of each of `n` frames: key frame `k` ([`Self::key_frames`]) at key time
+    /// `t_k` exactly, the frames between two keys evenly spaced in time.
+    ///
+    /// # Errors
+    /// As [`Self::key_frames`].
+    pub fn frame_times(&self, n: usize) -> Result<Vec<f64>, MorphError> {
+        let idx = self.key_frames(n)?;
+        let t = self.homotopy.times();
+        let mut out = vec![0.0; n];
+        for k in 0..idx.len() - 1 {
+            let (a, b) = (idx[k], idx[k + 1]);
+            for i in a..=b {
+                out[i] = if i == a {
+                    t[k]
+                } else if i == b {
+                    t[k + 1]
+                } else {
+                    t[k] + (i - a) as f64 / (b - a) as f64 * (t[k + 1] - t[k])
+                };
+            }
+        }
+        Ok(out)
+    }
+
+    /// The weights of the glTF morph targets `P_k − P_0` (`k ≥ 1`) at time `t`:
+    /// `φ_1(t) … φ_{K−1}(t)` (the frame is `P_0 + Σ_k φ_k (P_k − P_0)`, as `Σ φ_k = 1`).
+    pub fn target_weights(&self, t: f64) -> Vec<f64> {
+        self.homotopy.weights(t)[1..].to_vec()
+    }
+}
+
+/// Everything computed per surface before the registration.
+struct Prepared<'m> {
+    problem: DiskProblem<'m>,
+    disk: DiskMap,
+    normalized: Vec<Complex64>,
+    disk_ms: f64,
+    normalize_ms: f64,
+}
+
+/// Morphs `surfaces[0]` (S1) through the others: their disk maps (the default method),
+/// the normalization `m₁` (first landmark to the centre, second onto the positive real
+/// axis), the registration of every other disk onto S1's (Eq. 34, boundary sliding on
+/// the circle, fold-checked), the location of S1's vertices in every registered disk,
+/// and the natural cubic spline through the K positions of every vertex.
+///
+/// # Errors
+/// [`MorphError::TooFewSurfaces`]; the landmark checks ([`Landmarks::check_against`],
+/// [`Landmarks::check_same_names`]); [`MorphError::Disk`] when a surface is not a disk or
+/// its map fails; [`MorphError::LandmarkOnBoundary`]; the registration's errors
+/// ([`register_disk`]); [`MorphError::InvalidOption`] for bad key times.
+pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, MorphError> {
+    let t_all = Instant::now();
+    if surfaces.len() < 2 {
+        return Err(MorphError::TooFewSurfaces {
+            found: surfaces.len(),
+        });
+    }
+    for (k, s) in surfaces.iter().enumerate() {
+        s.landmarks.check_against(k, s.mesh.num_vertices())?;
+        s.landmarks.check_same_names(k, &surfaces[0].landmarks)?;
+    }
+    let homotopy = match &options.key_times {
+        Some(t) if t.len() != surfaces.len() => {
+            return Err(MorphError::InvalidOption {
+                name: "key_times",
+                reason: format!("{} key times for {} surfaces", t.len(), surfaces.len()),
+            })
+        }
+        Some(t) => CubicHomotopy::new(t.clone())?,
+        None => CubicHomotopy::evenly_spaced(surfaces.len())?,
+    };
+    let prepared: Vec<Prepared<'_>> = surfaces
+        .par_iter()
+        .enumerate()
+        .map(|(k, s)| prepare(k, s, options))
+        .collect::<Result<_, _>>()?;
+    let s1 = &prepared[0];
+    let targets: Vec<Complex64> = surfaces[0]
+        .landmarks
+        .vertices()
+        .iter()
+        .map(|&v| s1.normalized[v as usize])
+        .collect();
+    let s1_disk = &s1.normalized;
+    let later: Vec<_> = (1..surfaces.len())
+        .into_par_iter()
+        .map(|k| {
+            let t0 = Instant::now();
+            let reg = register_disk(
+                &prepared[k].problem,
+                &prepared[k].normalized,
+                surfaces[k].landmarks.vertices(),
+                &targets,
+                &options.register,
+                k,
+            )?;
+            let register_ms = ms(t0);
+            let t1 = Instant::now();
+            let grid = TriangleGrid::new(&reg.map, surfaces[k].mesh.faces());
+            let mut locations: Vec<Location> = s1_disk.iter().map(|&z| grid.locate(z)).collect();
+            if options.register.mode == LandmarkMode::Hard {
+                pin_landmarks(&mut locations, &surfaces[0], &surfaces[k]);
+            }
+            let key = carry(&surfaces[k].mesh, &locations);
+            Ok((reg, locations, key, register_ms, ms(t1)))
+        })
+        .collect::<Result<Vec<_>, MorphError>>()?;
+
+    let mut keys = vec![surfaces[0].mesh.positions().to_vec()];
+    let mut locations = vec![Vec::new()];
+    let mut reports = vec![key_report(0, surfaces, &prepared[0], &homotopy, None)];
+    for (i, (reg, locs, key, register_ms, locate_ms)) in later.into_iter().enumerate() {
+        let k = i + 1;
+        let mut r = key_report(k, surfaces, &prepared[k], &homotopy, Some(&key));
+        let snapped: Vec<f64> = locs
+            .iter()
+            .map(|l| l.outside)
+            .filter(|&d| d > 0.0)
+            .collect();
+        r.locate = Some(LocateSummary {
+            snapped: snapped.len(),
+            max_outside: snapped.iter().copied().fold(0.0, f64::max),
+        });
+        let flips = flipped_against_key(
+            &key,
+            surfaces[0].mesh.faces(),
+            surfaces[k].mesh.positions(),
+            surfaces[k].mesh.faces(),
+            &locs,
+        );
+        r.key_frame_flipped_faces = flips.len();
+        r.key_frame_largest_flip_patch = largest_patch(surfaces[0].mesh.faces(), &flips);
+        r.registration = Some(reg.report);
+        r.timings_ms.register = register_ms;
+        r.timings_ms.locate = locate_ms;
+        reports.push(r);
+        keys.push(key);
+        locations.push(locs);
+    }
+    Ok(Morph {
+        faces: surfaces[0].mesh.faces().to_vec(),
+        keys,
+        locations,
+        homotopy,
+        report: MorphReport {
+            landmarks: surfaces[0].landmarks.names().to_vec(),
+            keys: reports,
+            total_ms: ms(t_all),
+        },
+    })
+}
+
+/// Disk map and normalization of surface `k`.
+fn prepare<'m>(
+    k: usize,
+    s: &'m Surface,
+    options: &MorphOptions,
+) -> Result<Prepared<'m>, MorphError> {
+    let disk_err = |source| MorphError::Disk { surface: k, source };
+    let t0 = Instant::now();
+    let mut problem = DiskProblem::new(&s.mesh).map_err(disk_err)?;
+    let disk =
+        run_disk_method(&mut problem, options.disk_method, &options.disk).map_err(disk_err)?;
+    let disk_ms = ms(t0);
+    let t1 = Instant::now();
+    let lm = s.landmarks.vertices();
+    let normalized = normalize_disk_map(&disk.map, lm[0], lm[1], k)?.map;
+    Ok(Prepared {
+        problem,
+        disk,
+        normalized,
+        disk_ms,
+        normalize_ms: ms(t1),
+    })
+}
+
+/// Hard landmarks: S1's landmark vertex `j` is located exactly at surface `k`'s landmark
+/// vertex `j` (the registration sends the one onto the other; where the registered disk
+/// folds around a landmark, point location could pick an overlapping face instead).
+fn pin_landmarks(locations: &mut [Location], s1: &Surface, sk: &Surface) {
+    for (&v1, &vk) in s1.landmarks.vertices().iter().zip(sk.landmarks.vertices()) {
+        let found = sk
+            .mesh
+            .faces()
+            .iter()
+            .enumerate()
+            .find_map(|(f, tri)| tri.iter().position(|&v| v == vk).map(|c| (f, c)));
+        if let Some((face, corner)) = found {
+            let mut bary = [0.0; 3];
+            bary[corner] = 1.0;
+            locations[v1 as usize] = Location {
+                face: face as u32,
+                bary,
+                outside: 0.0,
+            };
+        }
+    }
+}
+
+/// The 3D point of `mesh` at every location.
+fn carry(mesh: &TriMesh, locations: &[Location]) -> Vec<[f64; 3]> {
+    let pos = mesh.positions();
+    locations
+        .iter()
+        .map(|l| {
+            let f = mesh.faces()[l.face as usize];
+            let mut p = [0.0; 3];
+            for i in 0..3 {
+                for c in 0..3 {
+                    p[c] += l.bary[i] * pos[f[i] as usize][c];
+                }
+            }
+            p
+        })
+        .collect()
+}
+
+/// The report of surface `k` without its registration, location and flip counts.
+fn key_report(
+    k: usize,
+    surfaces: &[Surface],
+    prep: &Prepared<'_>,
+    homotopy: &CubicHomotopy,
+    key: Option<&[[f64; 3]]>,
+) -> KeyReport {
+    let mesh = &surfaces[k].mesh;
+    let diagonal = mesh.bbox_diagonal();
+    let errors: Vec<f64> = match key {
+        None => vec![0.0; surfaces[k].landmarks.len()],
+        Some(key) => surfaces[0]
+            .landmarks
+            .vertices()
+            .iter()
+            .zip(surfaces[k].landmarks.vertices())
+            .map(|(&v1, &vk)| {
+                let (a, b) = (key[v1 as usize], mesh.positions()[vk as usize]);
+                let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() / diagonal
+            })
+            .collect(),
+    };
+    let r = &prep.disk.report;
+    KeyReport {
+        surface: k,
+        time: homotopy.times()[k],
+        vertices: mesh.num_vertices(),
+        faces: mesh.num_faces(),
+        boundary_vertices: mesh.boundary_loops().first().map_or(0, Vec::len),
+        diagonal,
+        disk: DiskSummary {
+            method: r.method.clone(),
+            conformal_energy: r
+                .energy_history
+                .get(r.best_iteration)
+                .copied()
+                .unwrap_or(f64::NAN),
+            iterations: r.iterations,
+            converged: r.converged,
+            notes: r.notes.clone(),
+        },
+        registration: None,
+        locate: None,
+        landmark_error_max_rel: errors.iter().copied().fold(0.0, f64::max),
+        landmark_errors_rel: errors,
+        key_frame_flipped_faces: 0,
+        key_frame_largest_flip_patch: 0,
+        timings_ms: KeyTimings {
+            disk_map: prep.disk_ms,
+            normalize: prep.normalize_ms,
+            register: 0.0,
+            locate: 0.0,
+        },
+    }
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}

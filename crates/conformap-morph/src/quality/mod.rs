@@ -1,0 +1,158 @@
+//! Checks of a morph's frames: flipped faces against the key surface, fold patches,
+//! degenerate faces, and the size of frame-to-frame steps.
+
+use std::collections::HashMap;
+
+use crate::Location;
+
+/// A face counts as degenerate when its area is below this fraction of the squared
+/// bounding-box diagonal: `1e-14` (rounding of the area of a unit triangle is 1e-16;
+/// the smallest face of the shared faces is about 1e-6 of the squared diagonal).
+pub const DEGENERATE_AREA_REL: f64 = 1e-14;
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Twice the area vector of triangle `f` of `positions`.
+pub fn face_normal(positions: &[[f64; 3]], f: &[u32; 3]) -> [f64; 3] {
+    let [a, b, c] = f.map(|v| positions[v as usize]);
+    cross(sub(b, a), sub(c, a))
+}
+
+/// Faces of `frame` (with connectivity `faces`) whose normal points against the normal of
+/// the key surface (`key_positions`, `key_faces`) where their vertices lie (`locations`,
+/// one per vertex of the frame: the sum of the unit normals of the three located faces).
+/// Returns the flipped faces, ascending.
+pub fn flipped_against_key(
+    frame: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    key_positions: &[[f64; 3]],
+    key_faces: &[[u32; 3]],
+    locations: &[Location],
+) -> Vec<usize> {
+    let unit = |n: [f64; 3]| {
+        let l = norm(n);
+        if l > 0.0 {
+            [n[0] / l, n[1] / l, n[2] / l]
+        } else {
+            n
+        }
+    };
+    faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| {
+            let mut reference = [0.0; 3];
+            for &v in f.iter() {
+                let kf = &key_faces[locations[v as usize].face as usize];
+                let n = unit(face_normal(key_positions, kf));
+                reference = [
+                    reference[0] + n[0],
+                    reference[1] + n[1],
+                    reference[2] + n[2],
+                ];
+            }
+            !(dot(face_normal(frame, f), reference) > 0.0)
+        })
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// The size of the largest group of `marked` faces connected through shared edges.
+pub fn largest_patch(faces: &[[u32; 3]], marked: &[usize]) -> usize {
+    if marked.is_empty() {
+        return 0;
+    }
+    let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (k, &f) in marked.iter().enumerate() {
+        let t = faces[f];
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            edge_faces.entry((a.min(b), a.max(b))).or_default().push(k);
+        }
+    }
+    // union–find over the marked faces
+    let mut parent: Vec<usize> = (0..marked.len()).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    for list in edge_faces.values() {
+        for w in list.windows(2) {
+            let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
+            parent[a] = b;
+        }
+    }
+    let mut size = vec![0usize; marked.len()];
+    for k in 0..marked.len() {
+        let r = find(&mut parent, k);
+        size[r] += 1;
+    }
+    size.into_iter().max().unwrap_or(0)
+}
+
+/// Faces of `positions` whose area is at most `rel` times the squared diagonal `diag`.
+pub fn degenerate_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], diag: f64, rel: f64) -> usize {
+    let floor = rel * diag * diag;
+    faces
+        .iter()
+        .filter(|f| !(0.5 * norm(face_normal(positions, f)) > floor))
+        .count()
+}
+
+/// The largest distance a vertex moves from `a` to `b`.
+pub fn max_step(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| norm(sub(*p, *q)))
+        .fold(0.0, f64::max)
+}
+
+/// Distance from point `p` to triangle `t` (3D).
+pub fn point_triangle_distance(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
+    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    let nn = dot(n, n);
+    if nn > 0.0 {
+        // inside the prism over the triangle: the distance to its plane
+        let inside = (0..3).all(|k| {
+            let e = sub(t[(k + 1) % 3], t[k]);
+            dot(cross(e, sub(p, t[k])), n) >= 0.0
+        });
+        if inside {
+            return dot(sub(p, t[0]), n).abs() / nn.sqrt();
+        }
+    }
+    (0..3)
+        .map(|k| {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = sub(b, a);
+            let ee = dot(e, e);
+            let s = if ee > 0.0 {
+                (dot(sub(p, a), e) / ee).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            norm(sub(p, [a[0] + s * e[0], a[1] + s * e[1], a[2] + s * e[2]]))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
