@@ -58,12 +58,12 @@ pub fn metrics<'py>(
     to_py_json(py, &value)
 }
 
+/// `(V, F)` as numpy arrays: float64 (n, 3), int64 (m, 3).
+pub type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
+
 /// Reads an OBJ / glTF / GLB mesh as `(V, F)`: float64 (n, 3) and int64 (m, 3).
 #[pyfunction]
-pub fn read_mesh<'py>(
-    py: Python<'py>,
-    path: std::path::PathBuf,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+pub fn read_mesh<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<MeshArrays<'py>> {
     let loaded = py
         .detach(|| conformap_io::read_mesh(&path))
         .map_err(|e| to_py(Failure::from(e)))?;
