@@ -130,7 +130,9 @@ pub struct SourceInfo {
 }
 
 impl SourceInfo {
-    pub(crate) fn new(path: PathBuf, format: Format) -> Self {
+    /// The source of a mesh with no file layout to keep (no lines, no weld): what the
+    /// readers start from, and what a mesh built from arrays (the Python package) has.
+    pub fn new(path: PathBuf, format: Format) -> Self {
         Self {
             path,
             format,

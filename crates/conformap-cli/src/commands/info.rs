@@ -126,7 +126,7 @@ fn repair_preview(raw: &RawMesh) -> String {
 
 /// The repairs `--repair` would still apply to a valid mesh (only keeping the largest
 /// component can: a valid mesh has no duplicate, flipped or unreferenced element).
-fn available_repairs(mesh: &TriMesh) -> Vec<String> {
+pub fn available_repairs(mesh: &TriMesh) -> Vec<String> {
     match repair(mesh.positions(), mesh.faces(), &RepairOptions::DEFAULT) {
         Ok(r) => r.log.actions(),
         Err(e) => vec![format!("cannot repair: {e}")],

@@ -29,24 +29,47 @@ pub struct MetricsArgs {
     pub json: bool,
 }
 
+/// The JSON of `conformap metrics --json` for the map `map` of `mesh` (read from
+/// `mesh_path`), taken from `param` (its `source`: `texture coordinates`, …); the Python
+/// package calls it on arrays.
+///
+/// # Errors
+/// [`Failure::BadInput`] when the map does not fit the mesh (without the param's path).
+pub fn metrics_report(
+    mesh: &conformap_mesh::TriMesh,
+    mesh_path: &std::path::Path,
+    map: &PlanarMap,
+    param: &str,
+    source: &str,
+) -> Result<serde_json::Value, Failure> {
+    let metrics = match map {
+        PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
+        PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
+    }
+    .map_err(Failure::input)?;
+    Ok(json!({
+        "conformap_version": env!("CARGO_PKG_VERSION"),
+        "command": "metrics",
+        "input": InputInfo::new(mesh_path, mesh),
+        "param": { "path": param, "map_from": source },
+        "metrics": metrics,
+    }))
+}
+
 /// Runs `conformap metrics`: the metrics as text or JSON, for stdout.
 pub fn run(args: &MetricsArgs) -> Result<Outcome, Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
     let mesh = &loaded.mesh;
     let param = read_map_file(&args.param, &args.mesh, mesh)?;
     let (map, source) = param.planar_map();
-    let metrics = match &map {
-        PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
-        PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
-    }
-    .map_err(|e| Failure::input(format!("{}: {e}", args.param.display())))?;
-    let value = json!({
-        "conformap_version": env!("CARGO_PKG_VERSION"),
-        "command": "metrics",
-        "input": InputInfo::new(&args.mesh, mesh),
-        "param": { "path": args.param.display().to_string(), "map_from": source },
-        "metrics": metrics,
-    });
+    let value = metrics_report(
+        mesh,
+        &args.mesh,
+        &map,
+        &args.param.display().to_string(),
+        source,
+    )
+    .map_err(|f| f.in_file(&args.param))?;
     let mut out = String::new();
     if args.json {
         out = serde_json::to_string_pretty(&value).unwrap_or_default();

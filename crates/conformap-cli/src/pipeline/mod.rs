@@ -155,25 +155,14 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     let input = read_input(mesh_path, input_args.repair)?;
     let read_ms = ms_since(t);
     drop(reading);
-    let mesh = &input.mesh;
-    let what = format!(
-        "{} of this mesh ({} vertices, {} faces)",
-        cmd.work(),
-        mesh.num_vertices(),
-        mesh.num_faces()
-    );
-    let memory = memory
-        .before_solving(cmd.peak_bytes(mesh), &what)
-        .map_err(|f| input.fail(f))?;
-    let _solving = context::reserve(memory.estimate);
-    context::stage(format!("{}: computing {what}", mesh_path.display()));
-    let solved = cmd.solve(&input)?;
+    let (solved, mut report) = solve_and_report(cmd, &input, memory, read_ms)?;
     if let Some(why) = solved.strict_violation.as_ref().filter(|_| output.strict) {
         return Err(input.fail(Failure::Numerical(format!(
             "{why} (--strict); nothing written"
         ))));
     }
 
+    let mesh = &input.mesh;
     let t = Instant::now();
     context::stage(format!("{}: writing", mesh_path.display()));
     let mut staged = Staged::new();
@@ -194,25 +183,8 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {
         staged.text(path, &input::vertex_map_text(log))?;
     }
-    let timings = StageTimings {
-        read: read_ms + solved.timings.read,
-        write: ms_since(t),
-        total: ms_since(t_all),
-        ..solved.timings
-    };
-    let report = Report {
-        conformap_version: env!("CARGO_PKG_VERSION"),
-        command: cmd.name(),
-        method: solved.method,
-        input: InputInfo::new(mesh_path, mesh),
-        param: solved.param,
-        solver: solved.solver,
-        sections: solved.sections,
-        metrics: solved.metrics,
-        memory: memory.report(),
-        repairs: input.repairs.as_ref().map(RepairsReport::new),
-        timings_ms: timings,
-    };
+    report.timings_ms.write = ms_since(t);
+    report.timings_ms.total = ms_since(t_all);
     if let Some(path) = &output.report {
         staged.json(path, &report)?;
     }
@@ -238,6 +210,56 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
         messages,
         exit_code: 0,
     })
+}
+
+/// The middle of [`run_map`] on an input already in memory: the memory check before
+/// solving, the solve and the report, with nothing read or written (`timings_ms.read` is
+/// `read_ms`, `write` is 0, `total` is `read_ms` + the solve). The Python package calls
+/// it on arrays; `--strict` is the caller's (see [`Solved::strict_violation`]).
+///
+/// # Errors
+/// The memory check's refusal and every failure of [`MapCommand::solve`].
+pub fn solve_and_report(
+    cmd: &dyn MapCommand,
+    input: &Input,
+    memory: MemoryCheck,
+    read_ms: f64,
+) -> Result<(Solved, Report), Failure> {
+    let t_solve = Instant::now();
+    let mesh = &input.mesh;
+    let what = format!(
+        "{} of this mesh ({} vertices, {} faces)",
+        cmd.work(),
+        mesh.num_vertices(),
+        mesh.num_faces()
+    );
+    let memory = memory
+        .before_solving(cmd.peak_bytes(mesh), &what)
+        .map_err(|f| input.fail(f))?;
+    // in a batch, the memory this solve holds while it runs (a no-op elsewhere)
+    let _solving = context::reserve(memory.estimate);
+    context::stage(format!("{}: computing {what}", input.path.display()));
+    let mut solved = cmd.solve(input)?;
+    let timings = StageTimings {
+        read: read_ms + solved.timings.read,
+        write: 0.0,
+        total: read_ms + ms_since(t_solve),
+        ..solved.timings
+    };
+    let report = Report {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: cmd.name(),
+        method: std::mem::take(&mut solved.method),
+        input: InputInfo::new(&input.path, mesh),
+        param: solved.param.take(),
+        solver: solved.solver.clone(),
+        sections: std::mem::take(&mut solved.sections),
+        metrics: solved.metrics.clone(),
+        memory: memory.report(),
+        repairs: input.repairs.as_ref().map(RepairsReport::new),
+        timings_ms: timings,
+    };
+    Ok((solved, report))
 }
 
 /// The flat mesh of a planar map: `(u, v, 0)` per vertex.

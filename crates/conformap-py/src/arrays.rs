@@ -1,0 +1,140 @@
+//! Arrays in and out: any real `(n, 3)` array as f64 points and any integer `(m, 3)` array
+//! as u32 faces, in C or Fortran order (coerced by `numpy.ascontiguousarray`, which copies
+//! nothing when the array is already float64 / int64 and C-contiguous); results as new
+//! float64 arrays.
+
+use conformap_cli::failure::{mesh_hint, Failure};
+use conformap_cli::pipeline::Input;
+use conformap_io::{Format, SourceInfo};
+use conformap_mesh::TriMesh;
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+use crate::errors::{bad_input, to_py};
+
+/// The path reports give for a mesh passed as arrays.
+pub const MEMORY_PATH: &str = "<arrays>";
+
+/// `numpy.ascontiguousarray(obj, dtype)` after checking that `obj`'s dtype kind is in
+/// `kinds` (`"fiu"` real, `"iu"` integer); `name` names the argument in errors.
+fn contiguous<'py>(
+    obj: &Bound<'py, PyAny>,
+    name: &str,
+    kinds: &str,
+    dtype: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let np = obj.py().import("numpy")?;
+    let arr = np.call_method1("asarray", (obj,))?;
+    let kind: String = arr.getattr("dtype")?.getattr("kind")?.extract()?;
+    if !kinds.contains(kind.as_str()) {
+        let dt = arr.getattr("dtype")?.str()?.to_string();
+        let want = if kinds == "iu" {
+            "an integer"
+        } else {
+            "a real"
+        };
+        return Err(bad_input(format!(
+            "{name} must be {want} array, got dtype {dt}"
+        )));
+    }
+    np.call_method1("ascontiguousarray", (arr, dtype))
+}
+
+/// Reads `obj` as a `(n, cols)` array of f64.
+pub fn points(obj: &Bound<'_, PyAny>, name: &str, cols: usize) -> PyResult<Vec<f64>> {
+    let arr = contiguous(obj, name, "fiu", "float64")?;
+    let arr: PyReadonlyArray2<'_, f64> = arr.extract().map_err(|_| shape_error(obj, name, cols))?;
+    if arr.shape()[1] != cols {
+        return Err(shape_error(obj, name, cols));
+    }
+    Ok(arr.as_slice()?.to_vec())
+}
+
+/// Reads `obj` as a `(m, 3)` integer array of faces, each index in `0..n`.
+pub fn faces(obj: &Bound<'_, PyAny>, n: usize) -> PyResult<Vec<[u32; 3]>> {
+    let arr = contiguous(obj, "F", "iu", "int64")?;
+    let arr: PyReadonlyArray2<'_, i64> = arr.extract().map_err(|_| shape_error(obj, "F", 3))?;
+    if arr.shape()[1] != 3 {
+        return Err(shape_error(obj, "F", 3));
+    }
+    let flat = arr.as_slice()?;
+    let mut out = Vec::with_capacity(flat.len() / 3);
+    for (f, tri) in flat.chunks_exact(3).enumerate() {
+        let mut face = [0u32; 3];
+        for k in 0..3 {
+            match u32::try_from(tri[k]) {
+                Ok(v) if (v as usize) < n => face[k] = v,
+                _ => {
+                    return Err(bad_input(format!(
+                        "face {f}: vertex index {} (corner {k}) is not in 0..{n} (V has {n} rows)",
+                        tri[k]
+                    )))
+                }
+            }
+        }
+        out.push(face);
+    }
+    Ok(out)
+}
+
+fn shape_error(obj: &Bound<'_, PyAny>, name: &str, cols: usize) -> PyErr {
+    let shape = obj
+        .getattr("shape")
+        .and_then(|s| s.str().map(|s| s.to_string()))
+        .unwrap_or_else(|_| "unknown".to_string());
+    bad_input(format!("{name} must have shape (n, {cols}), got {shape}"))
+}
+
+/// `V` and `F` as a validated mesh wrapped as the pipeline's [`Input`] (path
+/// [`MEMORY_PATH`]); validation errors are the CLI's (element named, with its hint).
+pub fn mesh_input(v: &Bound<'_, PyAny>, f: &Bound<'_, PyAny>) -> PyResult<Input> {
+    let flat = points(v, "V", 3)?;
+    let positions: Vec<[f64; 3]> = flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+    let faces = faces(f, positions.len())?;
+    let n = positions.len();
+    let mesh = v
+        .py()
+        .detach(|| TriMesh::try_new(positions, faces))
+        .map_err(|e| {
+            let hint = mesh_hint(&e).map(str::to_string);
+            to_py(Failure::BadInput(e.to_string(), hint))
+        })?;
+    Ok(memory_input(mesh, n))
+}
+
+/// A mesh given as arrays as the pipeline's [`Input`].
+pub fn memory_input(mesh: TriMesh, file_vertex_count: usize) -> Input {
+    let path = std::path::PathBuf::from(MEMORY_PATH);
+    let mut source = SourceInfo::new(path.clone(), Format::Obj);
+    source.file_vertex_count = file_vertex_count;
+    Input {
+        mesh,
+        source,
+        repairs: None,
+        path,
+    }
+}
+
+/// An `(n, cols)` float64 array from rows.
+pub fn to_array<'py, const C: usize>(
+    py: Python<'py>,
+    rows: &[[f64; C]],
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), C])
+}
+
+/// An `(m, 3)` int64 array of faces.
+pub fn faces_array<'py>(
+    py: Python<'py>,
+    faces: &[[u32; 3]],
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let flat: Vec<i64> = faces.iter().flatten().map(|&v| i64::from(v)).collect();
+    numpy::PyArray1::from_vec(py, flat).reshape([faces.len(), 3])
+}
+
+/// A JSON value as the Python object `json.loads` would give.
+pub fn to_py_json<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| bad_input(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}

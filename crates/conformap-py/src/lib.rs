@@ -1,0 +1,37 @@
+//! `conformap` for Python: the conformap command pipeline on numpy arrays (pyo3 + numpy,
+//! an abi3 wheel built by maturin).
+//!
+//! Every map function runs the CLI's own command ([`conformap_cli::commands`]) through
+//! [`conformap_cli::pipeline::solve_and_report`] on an in-memory mesh, so its report is the
+//! dict of the CLI's `--report` JSON, built by the same code. The GIL is released for all
+//! computation.
+//!
+//! # Modules
+//! - [`arrays`]: coercion of `V` / `F` / map arrays to f64 / u32 data, and back to numpy.
+//! - [`errors`]: `ConformapError` (a `ValueError`) and `NumericalError` (a
+//!   `RuntimeError`), from the CLI's failures.
+//! - [`maps`]: `disk_map`, `sphere_map`.
+//! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
+
+pub mod arrays;
+pub mod errors;
+pub mod maps;
+pub mod meshes;
+
+use pyo3::prelude::*;
+
+/// The Python module `conformap`.
+#[pymodule]
+fn conformap(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("ConformapError", py.get_type::<errors::ConformapError>())?;
+    m.add("NumericalError", py.get_type::<errors::NumericalError>())?;
+    m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::info, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::metrics, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
+    Ok(())
+}
