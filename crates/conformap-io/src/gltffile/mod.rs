@@ -2,6 +2,7 @@
 
 mod accessor;
 mod buffers;
+mod container;
 mod read;
 mod weld;
 mod write;
