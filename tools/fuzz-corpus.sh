@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Seeds the cargo-fuzz corpus of one target from the fixtures (fuzz/corpus/TARGET, ignored
 # by git). Idempotent: existing corpus files are kept.
-#   tools/fuzz-corpus.sh obj|gltf|glb|disk
+#   tools/fuzz-corpus.sh obj|gltf|glb|disk|param
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-target="${1:?usage: tools/fuzz-corpus.sh obj|gltf|glb|disk}"
+target="${1:?usage: tools/fuzz-corpus.sh obj|gltf|glb|disk|param}"
 dir="$root/fuzz/corpus/$target"
 mkdir -p "$dir"
 fx="$root/fixtures"
@@ -30,11 +30,11 @@ obj)
     cp "$fx/woody.obj" "$dir/"
     ;;
 gltf)
-    cp "$fx/gltf/quad_external.gltf" "$dir/"
+    cp "$fx/gltf/quad_external.gltf" "$fx/gltf/triangle_data_uri.gltf" "$fx"/bad/*.gltf "$dir/"
     make_gltf_seeds gltf
     ;;
 glb)
-    cp "$fx/gltf/woody.glb" "$fx/gltf/woody_soup.glb" "$dir/"
+    cp "$fx"/gltf/*.glb "$fx"/bad/*.glb "$dir/"
     make_gltf_seeds glb
     ;;
 disk)
@@ -47,8 +47,16 @@ disk)
         printf "\\$(printf %03o "$mode")\\004hello-disk-seed-$mode" >"$dir/grid_$mode"
     done
     ;;
+param)
+    # maps of the target's fixed hexagon (centre + 6 corners, 6 faces): flat and with vt
+    v='v 0 0 0\nv 1 0 0\nv 0.5 0.8660254037844386 0\nv -0.5 0.8660254037844387 0\nv -1 0 0\nv -0.5 -0.8660254037844384 0\nv 0.5 -0.8660254037844386 0\n'
+    printf "${v}f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 6\nf 1 6 7\nf 1 7 2\n" >"$dir/flat.obj"
+    printf "${v}vt 0.5 0.5\nvt 1 0.5\nvt 0.75 0.93\nvt 0.25 0.93\nvt 0 0.5\nvt 0.25 0.07\nvt 0.75 0.07\n" >"$dir/uv.obj"
+    printf "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\nf 1/1 4/4 5/5\nf 1/1 5/5 6/6\nf 1/1 6/6 7/7\nf 1/1 7/7 2/2\n" >>"$dir/uv.obj"
+    cp "$fx/bad/uv_seam.obj" "$dir/"
+    ;;
 *)
-    echo "unknown target: $target (expected obj, gltf, glb or disk)" >&2
+    echo "unknown target: $target (expected obj, gltf, glb, disk or param)" >&2
     exit 2
     ;;
 esac

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one cargo-fuzz target for SECONDS seconds and prints its run count.
-#   tools/fuzz.sh obj|gltf|glb|disk SECONDS [more libFuzzer flags...]
+#   tools/fuzz.sh obj|gltf|glb|disk|param SECONDS [more libFuzzer flags...]
 # Needs the nightly toolchain (`cargo +nightly fuzz`); installs cargo-fuzz if missing.
 # FUZZ_SANITIZER=none|address (default address); FUZZ_JOBS=N runs N jobs in parallel (the
 # run count is then in fuzz/fuzz-*.log).
@@ -8,13 +8,13 @@
 # in fuzz/artifacts/TARGET (both ignored by git): turn each into a regression test in the
 # crate that owns the bug, then delete it.
 set -euo pipefail
-usage="usage: tools/fuzz.sh obj|gltf|glb|disk SECONDS [libFuzzer flags...]"
+usage="usage: tools/fuzz.sh obj|gltf|glb|disk|param SECONDS [libFuzzer flags...]"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 target="${1:?$usage}"
 secs="${2:?$usage}"
 shift 2
 case "$target" in
-obj | disk) dict=obj.dict; max_len=16384 ;;
+obj | disk | param) dict=obj.dict; max_len=16384 ;;
 gltf | glb) dict=gltf.dict; max_len=131072 ;;
 *)
     echo "$usage" >&2

@@ -220,3 +220,41 @@ fn check_metrics(mesh: &TriMesh, map: &[Complex64]) {
         assert!(v.is_finite(), "metric {name} is {v} for a finite map");
     }
 }
+
+/// The map file (`PARAM`) reader of `metrics` and `mobius`, against a fixed 7-vertex
+/// hexagonal disk: on success the map has the mesh's vertex count (and one texture
+/// coordinate per vertex if any); on failure the error is bad input with a hint.
+pub fn param(data: &[u8]) {
+    use conformap_cli::commands::param::read_map_file;
+    use std::sync::OnceLock;
+    static MESH: OnceLock<TriMesh> = OnceLock::new();
+    let mesh = MESH.get_or_init(|| {
+        let mut positions = vec![[0.0, 0.0, 0.0]];
+        positions.extend((0..6).map(|k| {
+            let a = f64::from(k) * std::f64::consts::FRAC_PI_3;
+            [a.cos(), a.sin(), 0.0]
+        }));
+        let faces = (0..6u32).map(|k| [0, 1 + k, 1 + (k + 1) % 6]).collect();
+        TriMesh::try_new(positions, faces).expect("the hexagon is a valid mesh")
+    });
+    let path = std::env::temp_dir().join(format!("conformap-fuzz-param-{}.obj", std::process::id()));
+    if std::fs::write(&path, data).is_err() {
+        return;
+    }
+    let result = read_map_file(&path, std::path::Path::new("hexagon.obj"), mesh);
+    match result {
+        Ok(map) => {
+            assert_eq!(map.positions.len(), mesh.num_vertices());
+            if let Some(uv) = &map.uv {
+                assert_eq!(uv.len(), mesh.num_vertices());
+            }
+            let (planar, _) = map.planar();
+            assert_eq!(planar.len(), mesh.num_vertices());
+        }
+        Err(failure) => {
+            assert_eq!(failure.exit_code(), 1, "{failure}");
+            assert!(failure.hint().is_some_and(|h| !h.is_empty()), "no hint: {failure}");
+            assert!(!failure.to_string().contains("panicked"));
+        }
+    }
+}

@@ -59,35 +59,20 @@ impl fmt::Display for Failure {
 impl From<conformap_io::IoError> for Failure {
     fn from(e: conformap_io::IoError) -> Self {
         let hint = io_hint(&e);
-        Self::BadInput(e.to_string(), hint.map(str::to_string))
+        Self::BadInput(e.to_string(), Some(hint.to_string()))
     }
 }
 
-/// What the user can do about a read error (the message says what and where).
-fn io_hint(e: &conformap_io::IoError) -> Option<&'static str> {
-    use conformap_io::{IoError as E, ObjProblem as P};
-    Some(match e {
-        E::InvalidMesh { source, .. } => return mesh_hint(source),
-        E::Read { .. } => "check the path and that the file is readable",
-        E::UnknownFormat { .. } => "name the file .obj, .gltf or .glb (by its actual format)",
-        E::ObjSyntax { problem, .. } => match problem {
-            P::NotUtf8 => "convert the file to UTF-8 text; a binary file is not an OBJ",
-            P::IndexZero { .. } => {
-                "OBJ indices start at 1: the exporter wrote 0-based indices; add 1 to every \
-                 index of the `f` lines"
-            }
-            P::IndexOutOfRange { .. } => {
-                "the face refers to an element the file does not define: the file is \
-                 truncated or its indices are off; re-export it"
-            }
-            _ => "fix or delete that line of the file (the message quotes what is wrong)",
-        },
-        E::Gltf { .. } | E::GltfData { .. } => {
-            "re-export the asset, or check it with the Khronos glTF validator; the message \
-             names the mesh, primitive and accessor"
-        }
+/// What the user can do about a read error (the message says what and where): the
+/// library's hint ([`conformap_io::IoError::hint`]), except for a mesh that fails validation,
+/// where [`mesh_hint`] names the CLI's repair when there is one, and for map files, where the
+/// CLI's `metrics` also reads seamed maps.
+fn io_hint(e: &conformap_io::IoError) -> &'static str {
+    use conformap_io::{IoError as E, UvProblem};
+    match e {
+        E::InvalidMesh { source, .. } => mesh_hint(source).unwrap_or(e.hint()),
         E::NotPerVertexUv {
-            problem: conformap_io::UvProblem::Missing { .. },
+            problem: UvProblem::Missing { .. },
             ..
         } => {
             "give every face corner a texture coordinate (f v/vt), or pass the map as a flat \
@@ -97,9 +82,8 @@ fn io_hint(e: &conformap_io::IoError) -> Option<&'static str> {
             "export the map with one texture coordinate per vertex (no seams), or pass it as \
              a flat mesh; `conformap metrics` also judges seamed maps"
         }
-        E::Backend { .. } => "this is a conformap bug: please report it with the file",
-        _ => return None,
-    })
+        _ => e.hint(),
+    }
 }
 
 /// What the user can do about a validation error: `--repair` where a safe, standard repair

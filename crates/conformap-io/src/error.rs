@@ -74,8 +74,10 @@ pub enum IoError {
         /// Why the texture coordinates are not one per vertex.
         problem: UvProblem,
     },
-    /// The glTF/GLB container or JSON is invalid, or a buffer could not be loaded (missing
-    /// `.bin` file, bad data URI). Fix: check the file with the Khronos glTF validator.
+    /// The glTF JSON is invalid, or a buffer could not be loaded for a reason the `gltf`
+    /// crate reports (problems this reader recognises itself, such as a wrong GLB header,
+    /// glTF 1.0, bad base64 or a short buffer, are [`IoError::GltfData`] with their own
+    /// hint). Fix: check the file with the Khronos glTF validator.
     #[error("{}: cannot load the glTF ({source})", path.display())]
     Gltf {
         /// The file.
@@ -98,6 +100,8 @@ pub enum IoError {
         accessor: Option<usize>,
         /// What is wrong.
         problem: String,
+        /// What the user can do about it (see [`IoError::hint`]).
+        hint: &'static str,
     },
     /// The data handed to a writer is inconsistent: see [`WriteProblem`]. Nothing is written.
     /// Fix: this is a caller bug or a non-finite map value; the message names the element.
@@ -108,15 +112,51 @@ pub enum IoError {
         /// What is wrong with the data.
         problem: WriteProblem,
     },
-    /// The OBJ backend (`tobj`) returned data this reader did not expect. This is a bug in
-    /// conformap-io (or a changed `tobj`), not in the file: please report it with the file.
-    #[error("{}: internal error while reading OBJ: {message}", path.display())]
-    Backend {
-        /// The file.
-        path: PathBuf,
-        /// What did not match.
-        message: String,
-    },
+}
+
+/// The hint for a glTF problem with no more specific advice.
+pub(crate) const GLTF_HINT: &str = "re-export the asset, or check it with the Khronos glTF \
+                                    validator; the message names the mesh, primitive and \
+                                    accessor";
+
+impl IoError {
+    /// What the user can do about this error: one sentence, for a `hint:` line under the
+    /// message. Every variant has one; for [`IoError::InvalidMesh`] it is generic (callers
+    /// with repair tools, like the CLI, give a more specific one per [`MeshError`]).
+    pub fn hint(&self) -> &'static str {
+        match self {
+            Self::Read { .. } => "check the path and that the file is readable",
+            Self::Write { .. } => {
+                "check that the output directory exists and is writable, and that the disk \
+                 is not full"
+            }
+            Self::UnknownFormat { .. } => {
+                "name the file .obj, .gltf or .glb (by its actual format)"
+            }
+            Self::ObjSyntax { problem, .. } => problem.hint(),
+            Self::InvalidMesh { .. } => {
+                "repair the element the message names in a mesh editor and export again"
+            }
+            Self::NotPerVertexUv { .. } => {
+                "export the map with one texture coordinate per vertex (no seams), or pass \
+                 it as a flat mesh"
+            }
+            Self::Gltf { .. } => GLTF_HINT,
+            Self::GltfData { hint, .. } => hint,
+            Self::BadWriteInput { .. } => {
+                "this is a bug in the caller (or a non-finite map value): please report it \
+                 with the input"
+            }
+        }
+    }
+
+    /// The same error with another hint, for [`IoError::GltfData`] (others are unchanged).
+    pub(crate) fn with_hint(mut self, new: &'static str) -> Self {
+        if let Self::GltfData { hint, .. } = &mut self {
+            *hint = new;
+        }
+        self
+    }
 }
 
 /// Where in a file a vertex or face comes from.
@@ -211,6 +251,30 @@ pub enum ObjProblem {
         /// How many such elements there are (for negative indices: defined so far).
         count: usize,
     },
+}
+
+impl ObjProblem {
+    /// What the user can do about this line (see [`IoError::hint`]).
+    pub fn hint(&self) -> &'static str {
+        match self {
+            Self::NotUtf8 => "convert the file to UTF-8 text; a binary file is not an OBJ",
+            Self::IndexZero { .. } => {
+                "OBJ indices start at 1: the exporter wrote 0-based indices; add 1 to every \
+                 index of the `f` lines"
+            }
+            Self::IndexOutOfRange { .. } => {
+                "the face refers to an element the file does not define: the file is \
+                 truncated or its indices are off; re-export it"
+            }
+            Self::UnknownStatement { .. }
+            | Self::WrongValueCount { .. }
+            | Self::BadNumber { .. }
+            | Self::TooFewCorners { .. }
+            | Self::BadCorner { .. } => {
+                "fix or delete that line of the file (the message quotes what is wrong)"
+            }
+        }
+    }
 }
 
 impl fmt::Display for ObjProblem {
@@ -424,4 +488,111 @@ fn gltf_place(mesh: Option<usize>, primitive: Option<usize>, accessor: Option<us
         s.push_str(&format!("accessor {a}, "));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One error of every variant (and every [`ObjProblem`]). The exhaustive `match` in
+    /// [`IoError::hint`] makes a new variant fail to compile without a hint; this list makes
+    /// it fail this test until it is added here.
+    fn one_of_each() -> Vec<IoError> {
+        let path = || PathBuf::from("m.obj");
+        let os = || std::io::Error::other("denied");
+        let line = |problem| IoError::ObjSyntax {
+            path: path(),
+            line: 3,
+            problem,
+        };
+        vec![
+            IoError::Read {
+                path: path(),
+                source: os(),
+            },
+            IoError::Write {
+                path: path(),
+                source: os(),
+            },
+            IoError::UnknownFormat { path: path() },
+            line(ObjProblem::NotUtf8),
+            line(ObjProblem::UnknownStatement {
+                keyword: "x".into(),
+            }),
+            line(ObjProblem::WrongValueCount {
+                keyword: "v".into(),
+                found: 2,
+            }),
+            line(ObjProblem::BadNumber {
+                keyword: "v".into(),
+            }),
+            line(ObjProblem::TooFewCorners { found: 2 }),
+            line(ObjProblem::BadCorner { token: "1/".into() }),
+            line(ObjProblem::IndexZero { what: "vertex" }),
+            line(ObjProblem::IndexOutOfRange {
+                what: "vertex",
+                index: 9,
+                count: 3,
+            }),
+            IoError::InvalidMesh {
+                path: path(),
+                origin: None,
+                source: MeshError::NoVertices,
+            },
+            IoError::NotPerVertexUv {
+                path: path(),
+                problem: UvProblem::Absent,
+            },
+            IoError::Gltf {
+                path: path(),
+                source: gltf::Error::UnsupportedScheme,
+            },
+            IoError::GltfData {
+                path: path(),
+                mesh: Some(0),
+                primitive: Some(1),
+                accessor: None,
+                problem: "bad".into(),
+                hint: GLTF_HINT,
+            },
+            IoError::BadWriteInput {
+                path: path(),
+                problem: WriteProblem::Empty,
+            },
+        ]
+    }
+
+    #[test]
+    fn every_error_names_its_file_and_has_a_hint() {
+        let errors = one_of_each();
+        for e in &errors {
+            let (msg, hint) = (e.to_string(), e.hint());
+            assert!(msg.starts_with("m.obj"), "{msg}");
+            // a sentence of advice, not a restatement of the message
+            assert!(
+                hint.len() > 30 && !hint.ends_with('.'),
+                "{msg}: hint `{hint}`"
+            );
+            assert!(!msg.contains(hint), "{msg}");
+        }
+        // every variant is in the list (a new variant breaks this match's compilation)
+        let kinds: std::collections::BTreeSet<usize> = errors.iter().map(variant).collect();
+        assert_eq!(kinds.len(), VARIANTS, "one IoError per variant");
+    }
+
+    const VARIANTS: usize = 9;
+
+    fn variant(e: &IoError) -> usize {
+        match e {
+            IoError::Read { .. } => 0,
+            IoError::Write { .. } => 1,
+            IoError::UnknownFormat { .. } => 2,
+            IoError::ObjSyntax { .. } => 3,
+            IoError::InvalidMesh { .. } => 4,
+            IoError::NotPerVertexUv { .. } => 5,
+            IoError::Gltf { .. } => 6,
+            IoError::GltfData { .. } => 7,
+            IoError::BadWriteInput { .. } => 8,
+        }
+    }
 }

@@ -1,11 +1,12 @@
 //! Mesh file I/O for conformap: OBJ and glTF/GLB readers and writers with errors that name
 //! the file and line.
 //!
-//! Depends on `conformap-mesh` (every mesh read passes [`TriMesh::try_new`]), `tobj`,
-//! `gltf`, `serde_json` and `thiserror`; never does any maths on the mesh and never prints.
+//! Depends on `conformap-mesh` (every mesh read passes [`TriMesh::try_new`]), `fast-float2`,
+//! `memchr`, `rayon`, `ryu`, `itoa`, `gltf`, `serde_json` and `thiserror`; never does any
+//! maths on the mesh and never prints.
 //!
-//! - [`read_mesh`] / [`read_mesh_from_bytes`]: OBJ (via `tobj`, with our own scan for line
-//!   numbers and checked indices), glTF and GLB (via `gltf`, with checked accessors, node
+//! - [`read_mesh`] / [`read_mesh_from_bytes`]: OBJ (our own parser, in parallel chunks, with
+//!   correctly rounded numbers, line numbers and checked indices), glTF and GLB (via `gltf`, with checked accessors, node
 //!   transforms and welding of seam-split vertices). They return a [`LoadedMesh`]: the
 //!   validated mesh, per-vertex texture coordinates if the file has them, and a
 //!   [`SourceInfo`] mapping mesh vertices and faces back to the file.
@@ -16,7 +17,7 @@
 //! - [`read_raw_mesh`] / [`read_raw_mesh_from_bytes`]: the same parsing without validation,
 //!   for callers that repair first ([`RawMesh::validate`] is the rest of [`read_mesh`]).
 //! - [`IoError`]: the one error type; variants name the file and the line ([`Origin`]) or
-//!   glTF mesh/primitive/accessor.
+//!   glTF mesh/primitive/accessor, buffer or GLB chunk; [`IoError::hint`] says what to do.
 //!
 //! Vertex order is kept: for OBJ, mesh vertex `k` is the file's `k`-th `v` line, so `vt`
 //! index `k` of an output belongs to input vertex `k`. OBJ numbers are written in Rust's

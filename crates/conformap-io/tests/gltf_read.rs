@@ -59,7 +59,11 @@ fn strips_and_fans_are_expanded_and_points_ignored() {
     let strip = read(&square_with_mode(5, [0, 1, 3, 2], json!([{ "mesh": 0 }]))).unwrap();
     assert_eq!(strip.mesh.faces(), &[[0, 1, 2], [2, 1, 3]]);
     assert_eq!(strip.mesh.boundary_loops().len(), 1);
-    assert!(strip.source.notes.iter().any(|n| n.contains("Points")));
+    assert!(strip
+        .source
+        .notes
+        .iter()
+        .any(|n| n.contains("POINTS (mode 0)")));
     // fan around corner 0: (1 2 0), (2 3 0)
     let fan = read(&square_with_mode(6, [0, 1, 2, 3], json!([{ "mesh": 0 }]))).unwrap();
     assert_eq!(fan.mesh.faces(), &[[1, 2, 0], [2, 3, 0]]);

@@ -1,14 +1,14 @@
 //! One timed run of the `conformap disk` pipeline, stage by stage, and the table rows.
 //!
 //! Stages, as in the `timings_ms` of `conformap disk --report`:
-//! - `read`: reading and validating the file;
+//! - `read`: reading and validating the file (ms, and in brackets MB/s of the file);
 //! - `assemble`: the cotangent Laplacian and its blocks;
 //! - `analyse`: the symbolic factorization of `L_II` (fill-reducing ordering, structure);
 //! - `factor`: its numeric factorization;
 //! - `iterate`: everything the method does after that — for CCEM: forming the Schur
 //!   complement (`schur`), the starting boundary (`start`), the iterations on the boundary
 //!   angles (`iterations`), the final harmonic solve and fold check (`finish`);
-//! - `metrics`, `write`.
+//! - `metrics`, `write` (ms, and in brackets MB/s of the OBJ written).
 //!
 //! `solver` = the wall-clock setup of the problem (`DiskProblem::setup_ms`: assembly and
 //! symbolic analysis at once on the two cores, then the numeric factorization) + iterate,
@@ -55,9 +55,13 @@ pub struct StageRow {
     flipped: f64,
     /// 1 when `L_II` was ordered by nested dissection, 0 for AMD.
     nested: f64,
+    /// Size of the input file, MB (10⁶ bytes), for the read column's MB/s.
+    read_mb: f64,
+    /// Size of the written OBJ, MB, for the write column's MB/s.
+    write_mb: f64,
 }
 
-const FIELDS: usize = 22;
+const FIELDS: usize = 24;
 
 impl StageRow {
     fn values(&self) -> [f64; FIELDS] {
@@ -84,6 +88,8 @@ impl StageRow {
             self.steps,
             self.flipped,
             self.nested,
+            self.read_mb,
+            self.write_mb,
         ]
     }
 
@@ -111,6 +117,8 @@ impl StageRow {
             steps: v[19],
             flipped: v[20],
             nested: v[21],
+            read_mb: v[22],
+            write_mb: v[23],
         }
     }
 
@@ -152,7 +160,7 @@ impl StageRow {
 
     /// The Markdown header.
     pub fn header() -> String {
-        "| mesh | V | F | n_B | ordering | read | assemble | analyse | factor | iterate (schur + start + iterations + finish) | metrics | write | solver | total | one factorization | solver / factorization (min–max) | peak RSS MiB | E_C | CCEM iterations |\n\
+        "| mesh | V | F | n_B | ordering | read (MB/s) | assemble | analyse | factor | iterate (schur + start + iterations + finish) | metrics | write (MB/s) | solver | total | one factorization | solver / factorization (min–max) | peak RSS MiB | E_C | CCEM iterations |\n\
          |---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
             .to_string()
     }
@@ -163,12 +171,13 @@ impl StageRow {
             .file_name()
             .map_or(name.to_string(), |n| n.to_string_lossy().to_string());
         format!(
-            "| {name} | {:.0} | {:.0} | {:.0} | {} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} ({:.0} + {:.0} + {:.0} + {:.0}) | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | **{:.2}** ({:.2}–{:.2}) | {:.0} | {:.6} | {:.0}{} |",
+            "| {name} | {:.0} | {:.0} | {:.0} | {} | {:.0} ({:.0}) | {:.0} | {:.0} | {:.0} | {:.0} ({:.0} + {:.0} + {:.0} + {:.0}) | {:.0} | {:.0} ({:.0}) | {:.0} | {:.0} | {:.0} | **{:.2}** ({:.2}–{:.2}) | {:.0} | {:.6} | {:.0}{} |",
             self.vertices,
             self.faces,
             self.boundary,
             if self.nested > 0.0 { "ND" } else { "AMD" },
             self.read,
+            mb_per_s(self.read_mb, self.read),
             self.assemble,
             self.analyse,
             self.factor,
@@ -179,6 +188,7 @@ impl StageRow {
             self.finish,
             self.metrics,
             self.write,
+            mb_per_s(self.write_mb, self.write),
             self.solver,
             self.total,
             self.reference,
@@ -195,6 +205,19 @@ impl StageRow {
             }
         )
     }
+}
+
+/// Throughput of `mb` MB in `ms` milliseconds (0 when nothing was timed).
+fn mb_per_s(mb: f64, ms: f64) -> f64 {
+    if ms > 0.0 {
+        mb / (ms / 1e3)
+    } else {
+        0.0
+    }
+}
+
+fn file_mb(path: &Path) -> f64 {
+    std::fs::metadata(path).map_or(0.0, |m| m.len() as f64 / 1e6)
 }
 
 pub(crate) fn ms(t: Instant) -> f64 {
@@ -246,8 +269,9 @@ pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, S
     let dest = std::env::temp_dir().join(format!("conformap-bench-out-{}.obj", std::process::id()));
     conformap_io::write_mesh_with_uv(&dest, mesh, &uv, Some(&loaded.source))
         .map_err(|e| e.to_string())?;
-    let _ = std::fs::remove_file(&dest);
     let write = ms(t);
+    let write_mb = file_mb(&dest);
+    let _ = std::fs::remove_file(&dest);
     let total = ms(t_all);
     let peak = peak_rss_mib();
     let stages = out.report.stages_ms.clone().unwrap_or_default();
@@ -273,6 +297,8 @@ pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, S
         faces: mesh.num_faces() as f64,
         boundary: problem.num_boundary() as f64,
         read,
+        read_mb: file_mb(path),
+        write_mb,
         assemble: problem.assemble_ms,
         analyse: stats.analyse_ms,
         factor: stats.factor_ms,

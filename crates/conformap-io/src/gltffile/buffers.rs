@@ -1,38 +1,12 @@
-//! Guards around the `gltf` crate's container parsing and buffer import, which can panic
-//! or read without bound on a few hostile inputs; the checks here turn those into errors.
+//! Guards around the `gltf` crate's buffer import, which can panic or read without bound on
+//! a few hostile inputs, and names the buffer in its errors.
 
 use std::path::{Path, PathBuf};
 
 use gltf::buffer::{Data, Source};
 
+use super::container::{check_data_uri, container_error};
 use crate::error::IoError;
-
-fn container_error(path: &Path, problem: impl Into<String>) -> IoError {
-    IoError::GltfData {
-        path: path.to_path_buf(),
-        mesh: None,
-        primitive: None,
-        accessor: None,
-        problem: problem.into(),
-    }
-}
-
-/// Rejects a GLB header whose length field is smaller than the header itself (`gltf`
-/// subtracts without checking).
-pub(crate) fn check_container(bytes: &[u8], path: &Path) -> Result<(), IoError> {
-    if let Some(rest) = bytes.strip_prefix(b"glTF") {
-        let length = rest
-            .get(4..8)
-            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-        if length.is_none_or(|l| l < 12) {
-            return Err(container_error(
-                path,
-                "GLB header is truncated or its length is < 12",
-            ));
-        }
-    }
-    Ok(())
-}
 
 /// Loads every buffer: the GLB `BIN` chunk, data URIs, or files relative to `base`.
 ///
@@ -49,7 +23,8 @@ pub(crate) fn load_buffers(
         let Source::Uri(uri) = buffer.source() else {
             continue;
         };
-        if uri.starts_with("data:") {
+        if let Some(rest) = uri.strip_prefix("data:") {
+            check_data_uri(rest, buffer.index(), path)?;
             continue;
         }
         let target = if let Some(rest) = uri.strip_prefix("file:") {
@@ -69,14 +44,45 @@ pub(crate) fn load_buffers(
                     buffer.index(),
                     target.display()
                 );
-                return Err(container_error(path, msg));
+                return Err(container_error(path, msg).with_hint(
+                    "put the buffer file next to the .gltf (its URI is relative to the .gltf), \
+                     or save the asset as one GLB",
+                ));
             }
         }
     }
-    gltf::import_buffers(doc, base, blob).map_err(|source| IoError::Gltf {
-        path: path.to_path_buf(),
-        source,
-    })
+    gltf::import_buffers(doc, base, blob).map_err(|source| import_error(source, path))
+}
+
+/// `gltf`'s import errors, in words that name the buffer where `gltf` knows it.
+fn import_error(source: gltf::Error, path: &Path) -> IoError {
+    let msg = match source {
+        gltf::Error::BufferLength {
+            buffer,
+            expected,
+            actual,
+        } => format!(
+            "buffer {buffer}: its byteLength is {expected} bytes, but its data has only \
+             {actual} (a truncated .bin file or data URI)"
+        ),
+        gltf::Error::MissingBlob => "a buffer without `uri` refers to the GLB's BIN chunk, \
+                                     but the file has none"
+            .to_string(),
+        gltf::Error::ExternalReferenceInSliceImport => "a buffer refers to an external file, \
+                                                         but the glTF was given as bytes \
+                                                         (no directory to look in)"
+            .to_string(),
+        gltf::Error::UnsupportedScheme => "a buffer URI has an unsupported scheme (only \
+                                           relative paths, file: and data: URIs are read)"
+            .to_string(),
+        source => {
+            return IoError::Gltf {
+                path: path.to_path_buf(),
+                source,
+            }
+        }
+    };
+    container_error(path, msg)
 }
 
 /// Decodes `%XX` escapes (invalid escapes stay literal, as in `urlencoding`); `None` if the
@@ -111,13 +117,5 @@ mod tests {
         assert_eq!(percent_decode("a%20b.bin").as_deref(), Some("a b.bin"));
         assert_eq!(percent_decode("%zz%4").as_deref(), Some("%zz%4"));
         assert_eq!(percent_decode("%FF.bin"), None);
-    }
-
-    #[test]
-    fn short_glb_header_is_an_error() {
-        let p = Path::new("x.glb");
-        assert!(check_container(b"glTF\x02\0\0\0\x04\0\0\0", p).is_err());
-        assert!(check_container(b"glTF", p).is_err());
-        assert!(check_container(b"{}", p).is_ok());
     }
 }

@@ -2,6 +2,7 @@
 
 mod accessor;
 mod buffers;
+mod container;
 mod morph;
 mod read;
 mod weld;

@@ -6,9 +6,10 @@ use gltf::buffer::Data;
 use gltf::mesh::Mode;
 use gltf::{Gltf, Semantic};
 
-use super::buffers::{check_container, load_buffers};
+use super::buffers::load_buffers;
+use super::container::{check_container, gltf1_error};
 use super::weld::{weld, PrimRange, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
-use crate::error::IoError;
+use crate::error::{IoError, GLTF_HINT};
 use crate::loaded::Format;
 use crate::raw::RawMesh;
 
@@ -29,16 +30,34 @@ pub(crate) fn read_gltf_raw(
     base: Option<&Path>,
     format: Format,
 ) -> Result<RawMesh, IoError> {
-    check_container(bytes, path)?;
-    let gltf_err = |source| IoError::Gltf {
-        path: path.to_path_buf(),
-        source,
+    check_container(bytes, path, format)?;
+    let gltf_err = |source| {
+        gltf1_error(bytes, path).unwrap_or_else(|| IoError::Gltf {
+            path: path.to_path_buf(),
+            source,
+        })
     };
     let Gltf { document, blob } = Gltf::from_slice_without_validation(bytes).map_err(gltf_err)?;
+    if let Some(e) = gltf1_error_of(&document, path) {
+        return Err(e);
+    }
     validate(&document).map_err(gltf_err)?;
     let buffers = load_buffers(&document, base, blob, path)?;
     let soup = collect(&document, &buffers, path)?;
     Ok(weld(soup, path, format))
+}
+
+/// A document that parsed as glTF 2.0 but says it is another version.
+fn gltf1_error_of(document: &gltf::Document, path: &Path) -> Option<IoError> {
+    let version = &document.as_json().asset.version;
+    if version.starts_with('2') {
+        return None;
+    }
+    let json = format!(r#"{{"asset":{{"version":{version:?}}}}}"#);
+    gltf1_error(json.as_bytes(), path).or_else(|| {
+        let msg = format!("asset.version is \"{version}\"; only glTF 2.0 is supported");
+        Some(super::container::container_error(path, msg))
+    })
 }
 
 /// The `gltf` crate's validation (every index in range, required fields present), except
@@ -96,6 +115,7 @@ fn data_error(
         primitive,
         accessor,
         problem: problem.into(),
+        hint: GLTF_HINT,
     }
 }
 
@@ -139,6 +159,7 @@ fn collect(doc: &gltf::Document, buffers: &[Data], path: &Path) -> Result<Soup, 
             .saturating_add(SOUP_FLOOR),
         ..Soup::default()
     };
+    let mut first_ignored = None;
     for (mesh_index, world) in instances(doc, path)? {
         let Some(mesh) = doc.meshes().nth(mesh_index) else {
             return Err(data_error(
@@ -150,12 +171,43 @@ fn collect(doc: &gltf::Document, buffers: &[Data], path: &Path) -> Result<Soup, 
             ));
         };
         for prim in mesh.primitives() {
-            add_primitive(&mut soup, &prim, mesh_index, &world, buffers, path)?;
+            let ignored = add_primitive(&mut soup, &prim, mesh_index, &world, buffers, path)?;
+            if let (None, Some(mode)) = (first_ignored, ignored) {
+                first_ignored = Some((mesh_index, prim.index(), mode));
+            }
         }
+    }
+    if let (true, Some((mesh, primitive, mode))) = (soup.faces.is_empty(), first_ignored) {
+        let msg = format!(
+            "the file has no triangles: its primitives are {} (as this one), which draw \
+             lines or points, not a surface",
+            mode_name(mode)
+        );
+        return Err(
+            data_error(path, Some(mesh), Some(primitive), None, msg).with_hint(
+                "export the surface as triangles (glTF mode TRIANGLES, 4); a line drawing or \
+             point cloud has no conformal map",
+            ),
+        );
     }
     Ok(soup)
 }
 
+/// The glTF spec's name and number of a primitive mode.
+fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Points => "POINTS (mode 0)",
+        Mode::Lines => "LINES (mode 1)",
+        Mode::LineLoop => "LINE_LOOP (mode 2)",
+        Mode::LineStrip => "LINE_STRIP (mode 3)",
+        Mode::Triangles => "TRIANGLES (mode 4)",
+        Mode::TriangleStrip => "TRIANGLE_STRIP (mode 5)",
+        Mode::TriangleFan => "TRIANGLE_FAN (mode 6)",
+    }
+}
+
+/// Adds one primitive's triangles to the soup; returns its mode if that is not a triangle
+/// mode (the primitive is then ignored, with a note).
 fn add_primitive(
     soup: &mut Soup,
     prim: &gltf::Primitive<'_>,
@@ -163,7 +215,7 @@ fn add_primitive(
     world: &Matrix,
     buffers: &[Data],
     path: &Path,
-) -> Result<(), IoError> {
+) -> Result<Option<Mode>, IoError> {
     let p = prim.index();
     let err = |acc: Option<usize>, msg: String| data_error(path, Some(mesh), Some(p), acc, msg);
     let mode = prim.mode();
@@ -172,9 +224,10 @@ fn add_primitive(
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
     ) {
         soup.notes.push(format!(
-            "mesh {mesh}, primitive {p}: mode {mode:?} is not triangles; ignored"
+            "mesh {mesh}, primitive {p}: mode {} is not triangles; ignored",
+            mode_name(mode)
         ));
-        return Ok(());
+        return Ok(Some(mode));
     }
     let pos_acc = prim
         .get(&Semantic::Positions)
@@ -241,7 +294,7 @@ fn add_primitive(
     }
     soup.faces
         .extend(tris.iter().map(|t| [t[0] + base, t[1] + base, t[2] + base]));
-    Ok(())
+    Ok(None)
 }
 
 /// Triangles of a primitive (local indices) and how many were skipped: strip/fan
