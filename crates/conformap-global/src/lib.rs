@@ -75,8 +75,8 @@ pub use error::GlobalError;
 pub use forms::{
     global_map, reduce_modulus, ConjugateMethod, EmphasisReport, FormSearchOptions, GlobalMap,
     GlobalMapOptions, GlobalTimings, LayoutMetrics, Objective, ObjectiveReport, UniformSearch,
-    Zero, ZeroAllocationReport, ZeroReport, ZeroTarget, DEFAULT_SEED, DEFAULT_STARTS,
-    GRADIENT_TOL, MAX_NEWTON_ITERATIONS, MODULUS_MAX_STEPS, OPTIMUM_MATCH_REL,
+    Zero, ZeroAllocationReport, ZeroReport, ZeroTarget, DEFAULT_SEED, DEFAULT_STARTS, GRADIENT_TOL,
+    MAX_NEWTON_ITERATIONS, MODULUS_MAX_STEPS, OPTIMUM_MATCH_REL,
 };
 pub use metrics::{
     sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,

@@ -39,7 +39,11 @@ pub fn extreme_eigenpair(m: &[f64], n: usize, largest: bool) -> (f64, Vec<f64>, 
     let (eig, vecs) = symmetric_eigen(m, n);
     let pick = (0..n)
         .reduce(|a, b| {
-            let better = if largest { eig[b] > eig[a] } else { eig[b] < eig[a] };
+            let better = if largest {
+                eig[b] > eig[a]
+            } else {
+                eig[b] < eig[a]
+            };
             if better {
                 b
             } else {

@@ -72,7 +72,9 @@ impl Objective {
             Self::LeastUniform => "least-uniform",
             Self::BestBasisForm => "basis",
             Self::Emphasize { maximize: true, .. } => "emphasize",
-            Self::Emphasize { maximize: false, .. } => "de-emphasize",
+            Self::Emphasize {
+                maximize: false, ..
+            } => "de-emphasize",
             Self::Zeros { .. } => "zeros",
         }
     }

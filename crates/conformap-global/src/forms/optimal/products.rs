@@ -142,12 +142,7 @@ pub fn area_products(
     let areas = conformap_operators::face_areas(mesh);
     let surface_area: f64 = areas[..faces].iter().sum();
     let s = areas[..faces].iter().map(|x| x / surface_area).collect();
-    Ok(AreaProducts {
-        n,
-        q,
-        s,
-        w,
-    })
+    Ok(AreaProducts { n, q, s, w })
 }
 
 /// `Q` with `λᵀ Q λ = ½ Im(conj(Σ λ_k a_k) Σ λ_j b_j)`, symmetrized.

@@ -69,7 +69,8 @@ fn gradient_and_hessian_match_finite_differences() {
             dn[i] -= h;
             let fd = (energy(&p, &up) - energy(&p, &dn)) / (2.0 * h);
             assert!(
-                (fd - ev.gradient[i]).abs() < 1e-6 * ev.gradient.iter().map(|x| x.abs()).sum::<f64>(),
+                (fd - ev.gradient[i]).abs()
+                    < 1e-6 * ev.gradient.iter().map(|x| x.abs()).sum::<f64>(),
                 "∂{i}: fd {fd:e} analytic {:e}",
                 ev.gradient[i]
             );
@@ -124,7 +125,11 @@ fn uniform_optimum_beats_basis_forms_and_dense_sampling_on_eightsim() {
     assert!((direct_energy(&map, &s, &o.coefficients) - o.uniformity).abs() < 1e-12);
     assert!((search.energy - o.uniformity).abs() < 1e-12);
     for (k, &e) in o.basis_uniformity.iter().enumerate() {
-        assert!(o.uniformity <= e, "basis form {k}: {e:e} < {:e}", o.uniformity);
+        assert!(
+            o.uniformity <= e,
+            "basis form {k}: {e:e} < {:e}",
+            o.uniformity
+        );
     }
     let samples: Vec<f64> = random_directions(o.coefficients.len(), SAMPLES, 99)
         .into_iter()
@@ -133,9 +138,17 @@ fn uniform_optimum_beats_basis_forms_and_dense_sampling_on_eightsim() {
     let (lo, hi) = samples
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
-    assert!(o.uniformity <= lo, "sample {lo:e} < optimum {:e}", o.uniformity);
+    assert!(
+        o.uniformity <= lo,
+        "sample {lo:e} < optimum {:e}",
+        o.uniformity
+    );
     let lo_o = &least.objective;
-    assert!(lo_o.uniformity >= hi, "sample {hi:e} > least uniform {:e}", lo_o.uniformity);
+    assert!(
+        lo_o.uniformity >= hi,
+        "sample {hi:e} > least uniform {:e}",
+        lo_o.uniformity
+    );
     // both runs compare the extremes and agree on them
     let ratio = o.max_min_ratio.unwrap();
     assert!((ratio - lo_o.max_min_ratio.unwrap()).abs() < 1e-9 * ratio);
@@ -186,7 +199,12 @@ pub(crate) fn half_region(mesh: &TriMesh, faces: usize) -> Vec<usize> {
 fn direct_share(map: &GlobalMap, region: &[bool], lambda: &[f64]) -> f64 {
     let a = direct_areas(map, lambda);
     let total: f64 = a.iter().sum();
-    a.iter().zip(region).filter(|(_, &r)| r).map(|(x, _)| x).sum::<f64>() / total
+    a.iter()
+        .zip(region)
+        .filter(|(_, &r)| r)
+        .map(|(x, _)| x)
+        .sum::<f64>()
+        / total
 }
 
 /// Compass search on the unit sphere of `λ` from `start`: steps along ± each axis, halved
@@ -228,16 +246,25 @@ fn emphasized_half_matches_sampling_and_brute_force_on_eightsim() {
             faces: half.clone(),
             maximize,
         };
-        let map = global_map(&mesh, &GlobalMapOptions::DEFAULT.with_objective(objective))
-            .expect("map");
+        let map =
+            global_map(&mesh, &GlobalMapOptions::DEFAULT.with_objective(objective)).expect("map");
         let em = map.objective.emphasis.clone().expect("emphasis");
         let sign = if maximize { 1.0 } else { -1.0 };
         // the chosen form's share, measured on its layout
         let uv = map.input_corner_uv();
         let la = crate::forms::quality::layout_areas(uv, map.input_faces);
-        let layout_share = la.iter().zip(&mask).filter(|(_, &r)| r).map(|(x, _)| x).sum::<f64>()
+        let layout_share = la
+            .iter()
+            .zip(&mask)
+            .filter(|(_, &r)| r)
+            .map(|(x, _)| x)
+            .sum::<f64>()
             / la.iter().sum::<f64>();
-        assert!((layout_share - em.share).abs() < 1e-9, "{layout_share} vs {}", em.share);
+        assert!(
+            (layout_share - em.share).abs() < 1e-9,
+            "{layout_share} vs {}",
+            em.share
+        );
         let samples: Vec<(f64, Vec<f64>)> = random_directions(4, SAMPLES, 5)
             .into_iter()
             .map(|d| {
@@ -251,7 +278,11 @@ fn emphasized_half_matches_sampling_and_brute_force_on_eightsim() {
             .unwrap();
         assert!(sign * best.0 <= sign * em.share + 1e-12);
         let brute = sign * compass_max(|l| sign * direct_share(&map, &mask, l), &best.1);
-        assert!((brute - em.share).abs() < 1e-9, "brute {brute} eigen {}", em.share);
+        assert!(
+            (brute - em.share).abs() < 1e-9,
+            "brute {brute} eigen {}",
+            em.share
+        );
         eprintln!(
             "eightsim half ({} faces, {:.4} of the area): {} share {:.6} (max {:.6}, min {:.6}), \
              best sample {:.6}, brute force {:.12} vs {:.12}",
@@ -305,7 +336,10 @@ fn genus_one_has_nothing_to_choose() {
         &torus,
         &GlobalMapOptions::DEFAULT.with_objective(Objective::Zeros { vertices: vec![0] }),
     );
-    assert!(matches!(zeros, Err(crate::GlobalError::InvalidOption { .. })));
+    assert!(matches!(
+        zeros,
+        Err(crate::GlobalError::InvalidOption { .. })
+    ));
 }
 
 #[test]
@@ -325,5 +359,8 @@ fn surfaces_with_boundary_are_optimized_on_the_users_copy() {
             vertices: vec![mesh.num_vertices()],
         }),
     );
-    assert!(matches!(bad, Err(crate::GlobalError::ZeroTargetOutOfRange { .. })));
+    assert!(matches!(
+        bad,
+        Err(crate::GlobalError::ZeroTargetOutOfRange { .. })
+    ));
 }
