@@ -229,7 +229,8 @@ impl From<conformap_global::GlobalError> for Failure {
             | E::NotInDisk { .. }
             | E::RegionFaceOutOfRange { .. }
             | E::DegenerateRegion { .. }
-            | E::InvalidOption { .. } => Self::BadInput(e.to_string(), hint),
+            | E::InvalidOption { .. }
+            | E::ZeroTargetOutOfRange { .. } => Self::BadInput(e.to_string(), hint),
             other => Self::Numerical(other.to_string()),
         }
     }

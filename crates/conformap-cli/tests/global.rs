@@ -313,3 +313,27 @@ fn seamed_maps_render_and_batch_runs_global() {
         std::fs::read(&out).unwrap()
     );
 }
+
+#[test]
+fn the_uniform_objective_is_at_least_as_uniform_as_the_best_basis_form() {
+    let d = tmpdir("global-objective");
+    let eight = fixture("eightsim.obj");
+    let run = |extra: &[&str], tag: &str| {
+        let (out, rep) = (d.join(format!("{tag}.obj")), d.join(format!("{tag}.json")));
+        let mut args = vec!["global", s(&eight), "-o", s(&out), "--report", s(&rep)];
+        args.extend(extra);
+        let o = conformap(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        json(&rep)["metrics"]["uniformity_energy"].as_f64().unwrap()
+    };
+    let basis = run(&[], "basis");
+    let uniform = run(&["--objective", "uniform", "--starts", "8"], "uniform");
+    assert!(
+        uniform <= basis * (1.0 + 1e-9),
+        "uniform {uniform} > basis {basis}"
+    );
+    assert!(
+        uniform < 0.99 * basis,
+        "the search found nothing better: {uniform} vs {basis}"
+    );
+}

@@ -106,4 +106,13 @@ pub enum GlobalError {
         /// What was singular.
         reason: &'static str,
     },
+    /// A zero-allocation target vertex does not exist. Fix: targets are 0-based indices of
+    /// the input's vertices, below its vertex count.
+    #[error("zero target vertex {vertex} is out of range: the mesh has {vertices} vertices (0-based indices)")]
+    ZeroTargetOutOfRange {
+        /// The offending vertex index.
+        vertex: usize,
+        /// Vertices of the input.
+        vertices: usize,
+    },
 }

@@ -61,8 +61,10 @@ pub use double_cover::{
 };
 pub use error::GlobalError;
 pub use forms::{
-    global_map, reduce_modulus, ConjugateMethod, GlobalMap, GlobalMapOptions, GlobalTimings,
-    LayoutMetrics, SeamedLayout, Zero, ZeroReport, MODULUS_MAX_STEPS,
+    global_map, reduce_modulus, ConjugateMethod, EmphasisReport, FormSearchOptions, GlobalMap,
+    GlobalMapOptions, GlobalTimings, LayoutMetrics, Objective, ObjectiveReport, SeamedLayout,
+    UniformSearch, Zero, ZeroAllocationReport, ZeroReport, ZeroTarget, DEFAULT_SEED,
+    DEFAULT_STARTS, GRADIENT_TOL, MAX_NEWTON_ITERATIONS, MODULUS_MAX_STEPS, OPTIMUM_MATCH_REL,
 };
 pub use mobius::energy::{
     disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,

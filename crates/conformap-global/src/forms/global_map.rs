@@ -13,11 +13,12 @@ use crate::forms::cohomology::{cohomology_basis, edge_weights};
 use crate::forms::conjugate::{conjugation, ConjugateMethod};
 use crate::forms::harmonic::{harmonic_projection, ms};
 use crate::forms::layout::integrate;
+use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{
     bilinear_residual, holomorphic_basis, period_matrix, reduce_modulus, ComplexCochain,
 };
-use crate::forms::quality::{layout_metrics, uniformity_energy, LayoutMetrics};
+use crate::forms::quality::{layout_metrics, LayoutMetrics};
 use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch, Zero, ZeroReport};
 use crate::GlobalError;
 
@@ -38,7 +39,9 @@ pub struct GlobalTimings {
     pub solve: f64,
     /// Wedge and Gram matrices, conjugation, holomorphic basis, periods.
     pub conjugate: f64,
-    /// Choosing the form, normalizing it, integrating it over the fundamental domain.
+    /// The objective: per-face area forms and the search or eigenproblem.
+    pub objective: f64,
+    /// Combining and normalizing the form, integrating it over the fundamental domain.
     pub layout: f64,
     /// Windings, zeros, conformal factor.
     pub zeros: f64,
@@ -100,10 +103,14 @@ pub struct GlobalMap {
     pub harmonic_residual: f64,
     /// Largest `|dω|` on the root face of the cohomology peeling.
     pub closedness_residual: f64,
-    /// The basis form laid out.
+    /// The basis form named by [`GlobalMapOptions::form`], else the basis form of lowest
+    /// uniformity energy (the laid-out form is [`ObjectiveReport::coefficients`]).
     pub form_index: usize,
     /// Uniformity energy of every basis form (over the input's faces).
     pub form_uniformity: Vec<f64>,
+    /// The holomorphic basis `φ_k = ω_k + i *ω_k` per edge of [`Self::surface`] (the
+    /// objective's coefficients combine these).
+    pub basis_forms: Vec<ComplexCochain>,
     /// The laid-out form per edge of [`Self::surface`], scaled so that the layout's area
     /// equals the surface's (Jin et al. Eq. 6).
     pub form: ComplexCochain,
@@ -123,6 +130,8 @@ pub struct GlobalMap {
     pub conformal_factor: Vec<f64>,
     /// Quality of the layout over the input's faces.
     pub metrics: LayoutMetrics,
+    /// The objective that chose the form and what it measured.
+    pub objective: ObjectiveReport,
     /// Dimension and nnz of the factored Laplacian block.
     pub factor_dim: usize,
     /// Non-zeros of the Cholesky factor.
@@ -269,21 +278,37 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         (None, Vec::new())
     };
     timings.conjugate = ms(t);
-    let t = Instant::now();
     let s_area = conformap_operators::face_areas(&surface);
-    let form_uniformity: Vec<f64> = forms
-        .iter()
-        .map(|phi| {
-            let a = form_face_areas(&basis.edges, phi, input_faces);
-            uniformity_energy(&a, &s_area[..input_faces])
-        })
-        .collect();
+    let mut objective = choose(
+        &Surface {
+            mesh: &surface,
+            edges: &basis.edges,
+            forms: &forms,
+            input_faces,
+            input_vertices,
+        },
+        &options.objective,
+        options.form,
+        &options.search,
+    )?;
+    timings.objective = objective.products_ms + objective.solve_ms;
+    let t = Instant::now();
+    let form_uniformity = objective.basis_uniformity.clone();
     let form_index = options.form.unwrap_or_else(|| {
         (0..n)
             .min_by(|&a, &b| form_uniformity[a].total_cmp(&form_uniformity[b]))
             .unwrap_or(0)
     });
-    let phi = &forms[form_index];
+    let combined: ComplexCochain = (0..basis.edges.halfedge.len())
+        .map(|e| {
+            forms
+                .iter()
+                .zip(&objective.coefficients)
+                .map(|(phi, l)| phi[e] * l)
+                .sum()
+        })
+        .collect();
+    let phi = &combined;
     let area: f64 = form_face_areas(&basis.edges, phi, surface.num_faces())
         .iter()
         .sum();
@@ -300,6 +325,14 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
     let t = Instant::now();
     let stretch = vertex_stretch(&surface, &basis.edges, &form);
     let zeros = find_zeros(&surface, &layout.corner_uv, &stretch);
+    finish_zeros(
+        &mut objective,
+        &surface,
+        &basis.edges,
+        &form,
+        &zeros,
+        input_vertices,
+    );
     let conformal_factor = conformal_factor(&surface, &basis.edges, &form);
     timings.zeros = ms(t);
     let t = Instant::now();
@@ -336,6 +369,7 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         closedness_residual,
         form_index,
         form_uniformity,
+        basis_forms: forms,
         form,
         corner_uv: layout.corner_uv,
         seam_residual: layout.seam_residual,
@@ -344,6 +378,7 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         zeros,
         conformal_factor,
         metrics,
+        objective,
         factor_dim: harmonic.factor.n,
         factor_nnz: harmonic.factor.nnz_factor,
         timings_ms: timings,

@@ -14,6 +14,8 @@
 //! - `zeros.rs`: zeros by winding ([`ZeroReport`]), conformal factor (Eq. 12).
 //! - `quality.rs`: angle and area distortion, the scale-free uniformity energy
 //!   ([`LayoutMetrics`]).
+//! - `optimal/`: the optimal form ([`Objective`]: uniform, least uniform, emphasized area,
+//!   zero allocation) over the coefficient sphere.
 //! - `options.rs`, `global_map.rs`: the entry point [`global_map`] → [`GlobalMap`].
 //! - `seamed.rs`: [`SeamedLayout`], the layout as a file writes it (per-corner texture
 //!   coordinates in the unit square).
@@ -24,6 +26,7 @@ mod dense;
 mod global_map;
 mod harmonic;
 mod layout;
+mod optimal;
 mod options;
 mod periods;
 mod quality;
@@ -35,6 +38,11 @@ mod tests;
 
 pub use conjugate::ConjugateMethod;
 pub use global_map::{global_map, GlobalMap, GlobalTimings};
+pub use optimal::{
+    EmphasisReport, FormSearchOptions, Objective, ObjectiveReport, UniformSearch,
+    ZeroAllocationReport, ZeroTarget, DEFAULT_SEED, DEFAULT_STARTS, GRADIENT_TOL,
+    MAX_NEWTON_ITERATIONS, OPTIMUM_MATCH_REL,
+};
 pub use options::GlobalMapOptions;
 pub use periods::{reduce_modulus, MODULUS_MAX_STEPS};
 pub use quality::LayoutMetrics;

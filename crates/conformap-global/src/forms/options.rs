@@ -3,14 +3,20 @@
 use conformap_operators::CholeskyOptions;
 
 use crate::forms::conjugate::ConjugateMethod;
+use crate::forms::optimal::{FormSearchOptions, Objective};
 
 /// Options of [`crate::global_map`].
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct GlobalMapOptions {
-    /// Which holomorphic basis form `φ_k = ω_k + i *ω_k` (`0 ≤ k < 2g`) to lay out.
-    /// Default `None`: the basis form of lowest uniformity energy (ties: the lowest index).
+    /// Which holomorphic basis form `φ_k = ω_k + i *ω_k` (`0 ≤ k < 2g`) to lay out,
+    /// overriding [`Self::objective`]. Default `None`: the objective decides.
     pub form: Option<usize>,
+    /// Which combination of the basis forms to lay out. Default [`Objective::Uniform`].
+    pub objective: Objective,
+    /// The multistart of the uniform / least-uniform search. Default
+    /// [`FormSearchOptions::DEFAULT`].
+    pub search: FormSearchOptions,
     /// The conjugate forms. Default [`ConjugateMethod::NearestComplexStructure`].
     pub conjugate: ConjugateMethod,
     /// Root vertex of the shortest-path tree (also the vertex pinned in the harmonic
@@ -24,6 +30,8 @@ impl GlobalMapOptions {
     /// The defaults, as a constant.
     pub const DEFAULT: Self = Self {
         form: None,
+        objective: Objective::Uniform,
+        search: FormSearchOptions::DEFAULT,
         conjugate: ConjugateMethod::NearestComplexStructure,
         root: None,
         cholesky: CholeskyOptions::DEFAULT,
@@ -33,6 +41,20 @@ impl GlobalMapOptions {
     #[must_use]
     pub fn with_form(mut self, form: Option<usize>) -> Self {
         self.form = form;
+        self
+    }
+
+    /// Sets [`Self::objective`].
+    #[must_use]
+    pub fn with_objective(mut self, objective: Objective) -> Self {
+        self.objective = objective;
+        self
+    }
+
+    /// Sets [`Self::search`].
+    #[must_use]
+    pub fn with_search(mut self, search: FormSearchOptions) -> Self {
+        self.search = search;
         self
     }
 

@@ -1,0 +1,297 @@
+//! The optimal holomorphic 1-form (Jin et al. 2004, §3.2–3.3, §3.6): which combination
+//! `φ = Σ λ_k φ_k` of the `2g` basis forms to lay out.
+//!
+//! Module map:
+//! - `products.rs`: per-face `2g × 2g` area forms, whitened by the total area form.
+//! - `uniform.rs`: the scale-free uniformity energy (Eq. 6–7), analytic gradient and
+//!   Hessian, saddle-free Newton on the coefficient sphere.
+//! - `search.rs`: the seeded multistart ([`FormSearchOptions`], [`UniformSearch`]).
+//! - `eigen.rs`: the emphasized area (Eq. 8–9) and the zero allocation (Eq. 13–14) as
+//!   symmetric eigenproblems ([`EmphasisReport`]), edge-ring distances.
+//! - `mod.rs` (here): [`Objective`], [`ObjectiveReport`], the dispatch.
+
+mod eigen;
+mod products;
+mod search;
+mod uniform;
+
+#[cfg(test)]
+mod tests;
+
+use conformap_mesh::{EdgeIndex, TriMesh};
+use serde::{Deserialize, Serialize};
+
+pub use eigen::EmphasisReport;
+pub use search::{
+    FormSearchOptions, UniformSearch, DEFAULT_SEED, DEFAULT_STARTS, OPTIMUM_MATCH_REL,
+};
+pub use uniform::{GRADIENT_TOL, MAX_NEWTON_ITERATIONS};
+
+pub(crate) use products::area_products;
+
+use crate::forms::periods::ComplexCochain;
+use crate::forms::zeros::{vertex_stretch, ZeroReport};
+use crate::GlobalError;
+
+/// Which holomorphic 1-form [`crate::global_map`] lays out (ignored when
+/// [`crate::GlobalMapOptions::form`] names a basis form).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub enum Objective {
+    /// The most uniform form: the minimum of the scale-free uniformity energy
+    /// `Σ_f (a_f/Σa − S_f/ΣS)²` (Eq. 6–7) over the coefficient sphere, by multistart Newton.
+    /// The default.
+    #[default]
+    Uniform,
+    /// The least uniform form (its maximum), as the paper's figures compare them.
+    LeastUniform,
+    /// The basis form of lowest uniformity energy (no search; issue 15's default).
+    BestBasisForm,
+    /// The form giving `faces` (0-based faces of the input) the largest share of the
+    /// parameter area (Eq. 8–9), or the smallest when `maximize` is false.
+    Emphasize {
+        /// The region's faces.
+        faces: Vec<usize>,
+        /// Maximize (emphasize) or minimize (de-emphasize) the region's share.
+        maximize: bool,
+    },
+    /// The form with zeros nearest the given input vertices (Eq. 13–14): minimizes
+    /// `Σ |ω(v_i)|²` under the area constraint. Exact for at most `g − 1` targets (the
+    /// least-squares compromise beyond). Needs genus ≥ 2.
+    Zeros {
+        /// Target vertices (0-based, of the input).
+        vertices: Vec<usize>,
+    },
+}
+
+impl Objective {
+    /// The objective's name as the CLI spells it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::LeastUniform => "least-uniform",
+            Self::BestBasisForm => "basis",
+            Self::Emphasize { maximize: true, .. } => "emphasize",
+            Self::Emphasize {
+                maximize: false, ..
+            } => "de-emphasize",
+            Self::Zeros { .. } => "zeros",
+        }
+    }
+}
+
+/// One zero-allocation target.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct ZeroTarget {
+    /// The target vertex (input numbering).
+    pub vertex: usize,
+    /// Edge rings from the target to the nearest zero's vertex (`None`: the form has no
+    /// zero).
+    pub ring_distance: Option<usize>,
+    /// That zero's vertex.
+    pub nearest_zero: Option<usize>,
+    /// `|ω(v)|` at the target: the mean of `|φ(e)|/|e|` over its edges, for the laid-out
+    /// form (area normalized to the surface's), the paper's estimate.
+    pub residual: f64,
+}
+
+/// The zero-allocation result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct ZeroAllocationReport {
+    /// Per target.
+    pub targets: Vec<ZeroTarget>,
+    /// Whether an exact solution exists in theory (`n ≤ g − 1` targets).
+    pub exact_expected: bool,
+    /// The median `|ω(v)|` over the input's vertices (the residuals' yardstick).
+    pub median_stretch: f64,
+    /// The smallest eigenvalue of the target form (the minimized `Σ |ω(v_i)|²` per unit
+    /// parameter area).
+    pub eigenvalue: f64,
+}
+
+/// What the objective chose and what it measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct ObjectiveReport {
+    /// [`Objective::name`].
+    pub objective: String,
+    /// The coefficients `λ_k` of the laid-out form over the holomorphic basis, scaled so
+    /// that the user's faces have parameter area `Σ λᵀ Q_f λ = 1`.
+    pub coefficients: Vec<f64>,
+    /// The scale-free uniformity energy of the chosen form over the user's faces.
+    pub uniformity: f64,
+    /// The uniformity energy of each basis form.
+    pub basis_uniformity: Vec<f64>,
+    /// The search of the objective (`Uniform`, `LeastUniform`); `None` for genus 1 (nothing
+    /// to choose) and the other objectives.
+    pub search: Option<UniformSearch>,
+    /// The opposite extreme's search when [`FormSearchOptions::compare`].
+    pub opposite: Option<UniformSearch>,
+    /// Largest over smallest uniformity energy when both extremes are known (1 for genus 1).
+    pub max_min_ratio: Option<f64>,
+    /// `Emphasize` only.
+    pub emphasis: Option<EmphasisReport>,
+    /// `Zeros` only (filled after the layout).
+    pub zeros: Option<ZeroAllocationReport>,
+    /// Wall-clock milliseconds: the area forms, then the objective's solve.
+    pub products_ms: f64,
+    /// See [`Self::products_ms`].
+    pub solve_ms: f64,
+}
+
+/// Inputs of [`choose`].
+pub(crate) struct Surface<'a> {
+    pub mesh: &'a TriMesh,
+    pub edges: &'a EdgeIndex,
+    pub forms: &'a [ComplexCochain],
+    pub input_faces: usize,
+    pub input_vertices: usize,
+}
+
+fn ms(t: std::time::Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// Picks the coefficients for `objective`. `forced`: a basis form named by the user.
+pub(crate) fn choose(
+    s: &Surface<'_>,
+    objective: &Objective,
+    forced: Option<usize>,
+    search: &FormSearchOptions,
+) -> Result<ObjectiveReport, GlobalError> {
+    let t = std::time::Instant::now();
+    let p = area_products(s.mesh, s.edges, s.forms, s.input_faces)?;
+    let products_ms = ms(t);
+    let t = std::time::Instant::now();
+    let n = p.n;
+    let basis_mu: Vec<Vec<f64>> = (0..n)
+        .map(|k| {
+            let mut e = vec![0.0; n];
+            e[k] = 1.0;
+            p.whiten(&e)
+        })
+        .collect();
+    let basis_uniformity: Vec<f64> = basis_mu.iter().map(|m| uniform::energy(&p, m)).collect();
+    let best_basis = (0..n)
+        .min_by(|&a, &b| basis_uniformity[a].total_cmp(&basis_uniformity[b]))
+        .unwrap_or(0);
+    let (mut search_out, mut opposite, mut ratio, mut emphasis, mut zeros) =
+        (None, None, None, None, None);
+    let mu = match (forced, objective) {
+        (Some(k), _) => basis_mu[k].clone(),
+        (None, Objective::BestBasisForm) => basis_mu[best_basis].clone(),
+        (None, Objective::Uniform | Objective::LeastUniform) if n == 2 => {
+            ratio = Some(1.0);
+            basis_mu[0].clone()
+        }
+        (None, Objective::Uniform | Objective::LeastUniform) => {
+            let maximize = matches!(objective, Objective::LeastUniform);
+            let found = search::multistart(&p, maximize, search);
+            if search.compare {
+                let other = search::multistart(&p, !maximize, search);
+                let (hi, lo) = if maximize {
+                    (found.energy, other.energy)
+                } else {
+                    (other.energy, found.energy)
+                };
+                ratio = Some(hi / lo);
+                opposite = Some(other);
+            }
+            let mu = found.mu.clone();
+            search_out = Some(found);
+            mu
+        }
+        (None, Objective::Emphasize { faces, maximize }) => {
+            let mask = crate::region_mask(s.input_faces, faces)?;
+            let (mu, report) = eigen::emphasize(&p, &mask, *maximize);
+            emphasis = Some(report);
+            mu
+        }
+        (None, Objective::Zeros { vertices }) => {
+            if n < 4 {
+                return Err(GlobalError::InvalidOption {
+                    name: "objective zeros",
+                    reason: "a genus-1 form has no zeros: zero allocation needs genus ≥ 2",
+                });
+            }
+            if let Some(&v) = vertices.iter().find(|&&v| v >= s.input_vertices) {
+                return Err(GlobalError::ZeroTargetOutOfRange {
+                    vertex: v,
+                    vertices: s.input_vertices,
+                });
+            }
+            if vertices.is_empty() {
+                return Err(GlobalError::InvalidOption {
+                    name: "objective zeros",
+                    reason: "needs at least one target vertex",
+                });
+            }
+            let m = eigen::zero_form(s.mesh, s.edges, s.forms, &p, vertices);
+            let (value, mu, _) = eigen::extreme_eigenpair(&m, n, false);
+            zeros = Some(ZeroAllocationReport {
+                targets: vertices
+                    .iter()
+                    .map(|&vertex| ZeroTarget {
+                        vertex,
+                        ring_distance: None,
+                        nearest_zero: None,
+                        residual: f64::NAN,
+                    })
+                    .collect(),
+                exact_expected: vertices.len() < n / 2,
+                median_stretch: f64::NAN,
+                eigenvalue: value,
+            });
+            mu
+        }
+    };
+    Ok(ObjectiveReport {
+        objective: if forced.is_some() {
+            "basis".to_owned()
+        } else {
+            objective.name().to_owned()
+        },
+        coefficients: p.coefficients(&mu),
+        uniformity: uniform::energy(&p, &mu),
+        basis_uniformity,
+        search: search_out,
+        opposite,
+        max_min_ratio: ratio,
+        emphasis,
+        zeros,
+        products_ms,
+        solve_ms: ms(t),
+    })
+}
+
+/// Fills the zero-allocation report once the layout's zeros are known: `form` is the
+/// laid-out form per edge of `mesh`.
+pub(crate) fn finish_zeros(
+    report: &mut ObjectiveReport,
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    form: &[num_complex::Complex64],
+    zeros: &ZeroReport,
+    input_vertices: usize,
+) {
+    let Some(z) = report.zeros.as_mut() else {
+        return;
+    };
+    let stretch = vertex_stretch(mesh, edges, form);
+    let mut goal = vec![false; mesh.num_vertices()];
+    for zero in &zeros.zeros {
+        goal[zero.vertex] = true;
+    }
+    for t in &mut z.targets {
+        t.residual = stretch[t.vertex];
+        if let Some((d, v)) = eigen::ring_distance(mesh, t.vertex, &goal) {
+            t.ring_distance = Some(d);
+            t.nearest_zero = Some(v);
+        }
+    }
+    let mut s: Vec<f64> = stretch[..input_vertices].to_vec();
+    s.sort_by(f64::total_cmp);
+    z.median_stretch = s.get(s.len() / 2).copied().unwrap_or(f64::NAN);
+}

@@ -1,0 +1,366 @@
+//! Tests of the optimal form on the small fixtures: derivatives against finite
+//! differences, the multistart against the basis forms and dense sampling, the
+//! eigenproblems against brute force, zero allocation by edge rings.
+
+use conformap_mesh::TriMesh;
+use conformap_testkit::{fixture_path, read_plain_obj};
+use num_complex::Complex64;
+
+use super::products::{area_products, quadratic};
+use super::search::random_directions;
+use super::uniform::{energy, evaluate};
+use super::Objective;
+use crate::{global_map, GlobalMap, GlobalMapOptions};
+
+fn eightsim() -> TriMesh {
+    read_plain_obj(&fixture_path("eightsim.obj")).expect("eightsim fixture")
+}
+
+/// Signed layout areas of the input's faces for coefficients `lambda`, straight from the
+/// basis forms' edge values (independent of the whitened products).
+pub(crate) fn direct_areas(map: &GlobalMap, lambda: &[f64]) -> Vec<f64> {
+    let val = |h: usize| -> Complex64 {
+        let e = map.edges.edge_of[h] as usize;
+        let s = map.edges.sign(h);
+        map.basis_forms
+            .iter()
+            .zip(lambda)
+            .map(|(phi, l)| phi[e] * (s * l))
+            .sum()
+    };
+    (0..map.input_faces)
+        .map(|f| 0.5 * (val(3 * f).conj() * -val(3 * f + 2)).im)
+        .collect()
+}
+
+pub(crate) fn direct_energy(map: &GlobalMap, s_share: &[f64], lambda: &[f64]) -> f64 {
+    let a = direct_areas(map, lambda);
+    let total: f64 = a.iter().sum();
+    a.iter()
+        .zip(s_share)
+        .map(|(x, s)| (x / total - s).powi(2))
+        .sum()
+}
+
+pub(crate) fn surface_shares(map: &GlobalMap) -> Vec<f64> {
+    let s = conformap_operators::face_areas(&map.surface);
+    let total: f64 = s[..map.input_faces].iter().sum();
+    s[..map.input_faces].iter().map(|x| x / total).collect()
+}
+
+fn unit(v: Vec<f64>) -> Vec<f64> {
+    let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    v.into_iter().map(|x| x / n).collect()
+}
+
+#[test]
+fn gradient_and_hessian_match_finite_differences() {
+    let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
+    let p = area_products(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
+    let n = p.n;
+    for dir in random_directions(n, 3, 7) {
+        let mu = unit(dir);
+        let ev = evaluate(&p, &mu);
+        assert!((ev.energy - energy(&p, &mu)).abs() < 1e-15);
+        let h = 1e-6;
+        for i in 0..n {
+            let (mut up, mut dn) = (mu.clone(), mu.clone());
+            up[i] += h;
+            dn[i] -= h;
+            let fd = (energy(&p, &up) - energy(&p, &dn)) / (2.0 * h);
+            assert!(
+                (fd - ev.gradient[i]).abs()
+                    < 1e-6 * ev.gradient.iter().map(|x| x.abs()).sum::<f64>(),
+                "∂{i}: fd {fd:e} analytic {:e}",
+                ev.gradient[i]
+            );
+            // Hessian column i by differences of the gradient (evaluate wants |μ| = 1, so
+            // difference the homogeneous extension: ∇E(tμ) = ∇E(μ)/t)
+            let (nu, nd) = (unit(up.clone()), unit(dn.clone()));
+            let (lu, ld) = (
+                up.iter().map(|x| x * x).sum::<f64>().sqrt(),
+                dn.iter().map(|x| x * x).sum::<f64>().sqrt(),
+            );
+            let (gu, gd) = (evaluate(&p, &nu).gradient, evaluate(&p, &nd).gradient);
+            let scale: f64 = ev.hessian.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            for j in 0..n {
+                let fd = (gu[j] / lu - gd[j] / ld) / (2.0 * h);
+                assert!(
+                    (fd - ev.hessian[j * n + i]).abs() < 1e-5 * scale,
+                    "H[{j},{i}]: fd {fd:e} analytic {:e}",
+                    ev.hessian[j * n + i]
+                );
+            }
+        }
+    }
+    // the whitening: the total area form is the identity
+    let c = p.sum_over(0..p.faces());
+    for i in 0..n {
+        for j in 0..n {
+            let want = if i == j { 1.0 } else { 0.0 };
+            assert!((c[i * n + j] - want).abs() < 1e-12);
+        }
+    }
+    let mu = unit(vec![1.0, -2.0, 0.5, 3.0]);
+    assert!((quadratic(&c, &mu) - 1.0).abs() < 1e-12);
+}
+
+/// Samples of the Euclidean unit sphere of the basis coefficients.
+const SAMPLES: usize = 5000;
+
+#[test]
+fn uniform_optimum_beats_basis_forms_and_dense_sampling_on_eightsim() {
+    let mesh = eightsim();
+    let map = global_map(&mesh, &GlobalMapOptions::DEFAULT).expect("map");
+    let least = global_map(
+        &mesh,
+        &GlobalMapOptions::DEFAULT.with_objective(Objective::LeastUniform),
+    )
+    .expect("map");
+    let s = surface_shares(&map);
+    let o = &map.objective;
+    let search = o.search.as_ref().expect("genus 2: a search");
+    // the reported energy is the laid-out form's (measured on the layout) and the direct one
+    assert!((o.uniformity - map.metrics.uniformity_energy).abs() < 1e-9 * o.uniformity);
+    assert!((direct_energy(&map, &s, &o.coefficients) - o.uniformity).abs() < 1e-12);
+    assert!((search.energy - o.uniformity).abs() < 1e-12);
+    for (k, &e) in o.basis_uniformity.iter().enumerate() {
+        assert!(
+            o.uniformity <= e,
+            "basis form {k}: {e:e} < {:e}",
+            o.uniformity
+        );
+    }
+    let samples: Vec<f64> = random_directions(o.coefficients.len(), SAMPLES, 99)
+        .into_iter()
+        .map(|d| direct_energy(&map, &s, &unit(d)))
+        .collect();
+    let (lo, hi) = samples
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+    assert!(
+        o.uniformity <= lo,
+        "sample {lo:e} < optimum {:e}",
+        o.uniformity
+    );
+    let lo_o = &least.objective;
+    assert!(
+        lo_o.uniformity >= hi,
+        "sample {hi:e} > least uniform {:e}",
+        lo_o.uniformity
+    );
+    // both runs compare the extremes and agree on them
+    let ratio = o.max_min_ratio.unwrap();
+    assert!((ratio - lo_o.max_min_ratio.unwrap()).abs() < 1e-9 * ratio);
+    assert!(ratio > 1.0);
+    assert_eq!(search.unconverged, 0, "{search:?}");
+    assert!(search.reached_best >= 2, "{search:?}");
+    eprintln!(
+        "eightsim: E uniform {:.6e} (basis best {:.6e}, samples {lo:.6e}..{hi:.6e}), least {:.6e}, \
+         ratio {ratio:.3}; starts {}, reached best {}, optima {:?} counts {:?}, iterations {} \
+         (max {}), {:.1} ms",
+        o.uniformity,
+        o.basis_uniformity.iter().cloned().fold(f64::INFINITY, f64::min),
+        lo_o.uniformity,
+        search.starts,
+        search.reached_best,
+        search.local_optima,
+        search.local_optimum_counts,
+        search.iterations_total,
+        search.iterations_max,
+        search.time_ms
+    );
+}
+
+/// The faces whose centroid lies below the area centroid along the longest bounding-box
+/// axis: "half of the surface split by a plane through the area centroid".
+pub(crate) fn half_region(mesh: &TriMesh, faces: usize) -> Vec<usize> {
+    let pos = mesh.positions();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in pos {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let axis = (0..3)
+        .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
+        .unwrap_or(0);
+    let areas = conformap_operators::face_areas(mesh);
+    let centroid = |f: usize| {
+        let t = mesh.faces()[f];
+        t.iter().map(|&v| pos[v as usize][axis]).sum::<f64>() / 3.0
+    };
+    let total: f64 = areas[..faces].iter().sum();
+    let c = (0..faces).map(|f| areas[f] * centroid(f)).sum::<f64>() / total;
+    (0..faces).filter(|&f| centroid(f) < c).collect()
+}
+
+fn direct_share(map: &GlobalMap, region: &[bool], lambda: &[f64]) -> f64 {
+    let a = direct_areas(map, lambda);
+    let total: f64 = a.iter().sum();
+    a.iter()
+        .zip(region)
+        .filter(|(_, &r)| r)
+        .map(|(x, _)| x)
+        .sum::<f64>()
+        / total
+}
+
+/// Compass search on the unit sphere of `λ` from `start`: steps along ± each axis, halved
+/// when none improves, down to `1e-9`.
+fn compass_max(f: impl Fn(&[f64]) -> f64, start: &[f64]) -> f64 {
+    let n = start.len();
+    let mut x = unit(start.to_vec());
+    let mut best = f(&x);
+    let mut step = 0.1;
+    while step > 1e-9 {
+        let mut improved = false;
+        for i in 0..n {
+            for sgn in [1.0, -1.0] {
+                let mut y = x.clone();
+                y[i] += sgn * step;
+                let y = unit(y);
+                let v = f(&y);
+                if v > best {
+                    best = v;
+                    x = y;
+                    improved = true;
+                }
+            }
+        }
+        if !improved {
+            step *= 0.5;
+        }
+    }
+    best
+}
+
+#[test]
+fn emphasized_half_matches_sampling_and_brute_force_on_eightsim() {
+    let mesh = eightsim();
+    let half = half_region(&mesh, mesh.num_faces());
+    let mask = crate::region_mask(mesh.num_faces(), &half).unwrap();
+    for maximize in [true, false] {
+        let objective = Objective::Emphasize {
+            faces: half.clone(),
+            maximize,
+        };
+        let map =
+            global_map(&mesh, &GlobalMapOptions::DEFAULT.with_objective(objective)).expect("map");
+        let em = map.objective.emphasis.clone().expect("emphasis");
+        let sign = if maximize { 1.0 } else { -1.0 };
+        // the chosen form's share, measured on its layout
+        let uv = map.input_corner_uv();
+        let la = crate::forms::quality::layout_areas(uv, map.input_faces);
+        let layout_share = la
+            .iter()
+            .zip(&mask)
+            .filter(|(_, &r)| r)
+            .map(|(x, _)| x)
+            .sum::<f64>()
+            / la.iter().sum::<f64>();
+        assert!(
+            (layout_share - em.share).abs() < 1e-9,
+            "{layout_share} vs {}",
+            em.share
+        );
+        let samples: Vec<(f64, Vec<f64>)> = random_directions(4, SAMPLES, 5)
+            .into_iter()
+            .map(|d| {
+                let l = unit(d);
+                (direct_share(&map, &mask, &l), l)
+            })
+            .collect();
+        let best = samples
+            .iter()
+            .max_by(|a, b| (sign * a.0).total_cmp(&(sign * b.0)))
+            .unwrap();
+        assert!(sign * best.0 <= sign * em.share + 1e-12);
+        let brute = sign * compass_max(|l| sign * direct_share(&map, &mask, l), &best.1);
+        assert!(
+            (brute - em.share).abs() < 1e-9,
+            "brute {brute} eigen {}",
+            em.share
+        );
+        eprintln!(
+            "eightsim half ({} faces, {:.4} of the area): {} share {:.6} (max {:.6}, min {:.6}), \
+             best sample {:.6}, brute force {:.12} vs {:.12}",
+            em.region_faces,
+            em.surface_share,
+            if maximize { "max" } else { "min" },
+            em.share,
+            em.share_max,
+            em.share_min,
+            best.0,
+            brute,
+            em.share
+        );
+    }
+}
+
+#[test]
+fn zero_allocation_lands_within_two_rings_on_eightsim() {
+    let mesh = eightsim();
+    for target in [10usize, 60, 120, 170] {
+        let map = global_map(
+            &mesh,
+            &GlobalMapOptions::DEFAULT.with_objective(Objective::Zeros {
+                vertices: vec![target],
+            }),
+        )
+        .expect("map");
+        let z = map.objective.zeros.as_ref().expect("zeros");
+        assert!(z.exact_expected);
+        let t = &z.targets[0];
+        eprintln!(
+            "eightsim target {target}: ring distance {:?} to zero {:?}, |ω| {:.3e} (median {:.3})",
+            t.ring_distance, t.nearest_zero, t.residual, z.median_stretch
+        );
+        assert!(t.ring_distance.unwrap() <= 2, "{t:?}");
+        assert!(t.residual < 0.2 * z.median_stretch, "{t:?}");
+        assert_eq!(map.zeros.multiplicity_sum, 2);
+    }
+}
+
+#[test]
+fn genus_one_has_nothing_to_choose() {
+    let torus = conformap_mesh::doc_torus();
+    let map = global_map(&torus, &GlobalMapOptions::DEFAULT).expect("map");
+    let o = &map.objective;
+    assert!(o.search.is_none());
+    assert_eq!(o.max_min_ratio, Some(1.0));
+    let e = &o.basis_uniformity;
+    assert!((e[0] - e[1]).abs() < 1e-9 * e[0], "{e:?}");
+    let zeros = global_map(
+        &torus,
+        &GlobalMapOptions::DEFAULT.with_objective(Objective::Zeros { vertices: vec![0] }),
+    );
+    assert!(matches!(
+        zeros,
+        Err(crate::GlobalError::InvalidOption { .. })
+    ));
+}
+
+#[test]
+fn surfaces_with_boundary_are_optimized_on_the_users_copy() {
+    let mesh = read_plain_obj(&fixture_path("halftunnel.obj")).expect("fixture");
+    let map = global_map(&mesh, &GlobalMapOptions::DEFAULT).expect("map");
+    assert!(map.double_covered);
+    let o = &map.objective;
+    // the energy the search minimized is the one measured on the user's copy of the layout
+    assert!((o.uniformity - map.metrics.uniformity_energy).abs() < 1e-9 * o.uniformity);
+    for &e in &o.basis_uniformity {
+        assert!(o.uniformity <= e);
+    }
+    let bad = global_map(
+        &mesh,
+        &GlobalMapOptions::DEFAULT.with_objective(Objective::Zeros {
+            vertices: vec![mesh.num_vertices()],
+        }),
+    );
+    assert!(matches!(
+        bad,
+        Err(crate::GlobalError::ZeroTargetOutOfRange { .. })
+    ));
+}

@@ -1,0 +1,214 @@
+//! The uniformity energy (Jin et al. 2004, Eq. 6–7, made scale-free) over the coefficient
+//! sphere: its analytic gradient and Hessian from the per-face area forms, a saddle-free
+//! Newton method on the sphere, and the seeded multistart.
+//!
+//! In whitened coordinates `μ` (see `products.rs`) the layout area of face `f` is
+//! `a_f = μᵀ Q̃_f μ`, the total `A = |μ|²`, and the energy
+//! `E(μ) = Σ_f (a_f / A − s_f)²` (`s_f = S_f / ΣS`) is homogeneous of degree 0, so it is
+//! optimized on the unit sphere. At `|μ| = 1`, with `u_f = Q̃_f μ`, `r_f = a_f − s_f`,
+//! `R = Σ r_f u_f`, `ρ = Σ r_f a_f`:
+//! - `∇E = 4 (R − ρ μ)` (tangent to the sphere: `μ · ∇E = 0`);
+//! - `∇²E = 8 Σ (u_f − a_f μ)(u_f − a_f μ)ᵀ + 4 Σ r_f Q̃_f − 8 (R μᵀ + μ Rᵀ) − 4ρ I
+//!   + 16 ρ μ μᵀ`.
+//!
+//! Each evaluation is one pass over the faces' precomputed `2g × 2g` forms.
+
+use crate::forms::dense::symmetric_eigen;
+use crate::forms::optimal::products::AreaProducts;
+
+/// The search stops when `|∇E| ≤ GRADIENT_TOL · E`. Default `1e-9`: Newton converges
+/// quadratically, so the last step takes the energy to rounding level; distinct optima
+/// differ by 0.1 % or more (papers README), far above this.
+pub const GRADIENT_TOL: f64 = 1e-9;
+
+/// Newton iterations per start at most. Default 100: converged starts need 5–15.
+pub const MAX_NEWTON_ITERATIONS: usize = 100;
+
+/// Armijo sufficient-decrease constant. Default `1e-4` (Nocedal–Wright).
+pub const ARMIJO: f64 = 1e-4;
+
+/// Step halvings per line search at most. Default 40 (a step of `2^-40`: no progress left).
+pub const MAX_HALVINGS: usize = 40;
+
+/// Hessian eigenvalues are floored at this fraction of the largest `|eigenvalue|` before
+/// inversion. Default `1e-10`: the rotation `φ → e^{iθ} φ` makes one tangent direction
+/// flat at every optimum; the floor keeps the step finite there.
+pub const HESSIAN_FLOOR: f64 = 1e-10;
+
+/// The energy and, optionally, gradient and Hessian at a unit `μ`.
+pub struct Evaluation {
+    /// `E(μ)`.
+    pub energy: f64,
+    /// `∇E` (empty when not requested).
+    pub gradient: Vec<f64>,
+    /// `∇²E`, row-major (empty when not requested).
+    pub hessian: Vec<f64>,
+}
+
+/// `E(μ)` for `μ ≠ 0` (any length: the energy is scale-free).
+pub fn energy(p: &AreaProducts, mu: &[f64]) -> f64 {
+    let n = p.n;
+    let norm2: f64 = mu.iter().map(|x| x * x).sum();
+    let mut e = 0.0;
+    for f in 0..p.faces() {
+        let q = p.face(f);
+        let mut a = 0.0;
+        for i in 0..n {
+            let row: f64 = (0..n).map(|j| q[i * n + j] * mu[j]).sum();
+            a += mu[i] * row;
+        }
+        e += (a / norm2 - p.s[f]).powi(2);
+    }
+    e
+}
+
+/// Energy, gradient and Hessian at a unit `μ`.
+pub fn evaluate(p: &AreaProducts, mu: &[f64]) -> Evaluation {
+    let n = p.n;
+    let nn = n * n;
+    let mut e = 0.0;
+    let (mut big_r, mut au) = (vec![0.0; n], vec![0.0; n]);
+    let (mut rho, mut a2) = (0.0, 0.0);
+    let (mut uu, mut rq) = (vec![0.0; nn], vec![0.0; nn]);
+    let mut u = vec![0.0; n];
+    for f in 0..p.faces() {
+        let q = p.face(f);
+        for i in 0..n {
+            u[i] = (0..n).map(|j| q[i * n + j] * mu[j]).sum();
+        }
+        let a: f64 = (0..n).map(|i| mu[i] * u[i]).sum();
+        let r = a - p.s[f];
+        e += r * r;
+        rho += r * a;
+        a2 += a * a;
+        for i in 0..n {
+            big_r[i] += r * u[i];
+            au[i] += a * u[i];
+            for j in i..n {
+                uu[i * n + j] += u[i] * u[j];
+                rq[i * n + j] += r * q[i * n + j];
+            }
+        }
+    }
+    let gradient: Vec<f64> = (0..n).map(|i| 4.0 * (big_r[i] - rho * mu[i])).collect();
+    let mut hessian = vec![0.0; nn];
+    for i in 0..n {
+        for j in i..n {
+            let gauss = uu[i * n + j] - au[i] * mu[j] - mu[i] * au[j] + a2 * mu[i] * mu[j];
+            let delta = if i == j { 1.0 } else { 0.0 };
+            let h = 8.0 * gauss + 4.0 * rq[i * n + j]
+                - 8.0 * (big_r[i] * mu[j] + mu[i] * big_r[j])
+                - 4.0 * rho * delta
+                + 16.0 * rho * mu[i] * mu[j];
+            hessian[i * n + j] = h;
+            hessian[j * n + i] = h;
+        }
+    }
+    Evaluation {
+        energy: e,
+        gradient,
+        hessian,
+    }
+}
+
+/// One local search's outcome.
+#[derive(Debug, Clone)]
+pub struct LocalOptimum {
+    /// Unit whitened coefficients.
+    pub mu: Vec<f64>,
+    /// Energy there.
+    pub energy: f64,
+    /// Newton iterations taken.
+    pub iterations: usize,
+    /// Whether the gradient test was met.
+    pub converged: bool,
+}
+
+fn normalized(v: &[f64]) -> Vec<f64> {
+    let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    v.iter().map(|x| x / norm).collect()
+}
+
+/// Saddle-free Newton on the unit sphere from `start`, minimizing `E` (`maximize`:
+/// minimizing `−E`). The step solves with `|P H P|` (eigenvalues in absolute value,
+/// floored), `P = I − μμᵀ`, restricted to the tangent space; retraction by normalization,
+/// Armijo backtracking.
+pub fn local_search(p: &AreaProducts, start: &[f64], maximize: bool) -> LocalOptimum {
+    let n = p.n;
+    let sign = if maximize { -1.0 } else { 1.0 };
+    let mut mu = normalized(start);
+    let mut ev = evaluate(p, &mu);
+    for it in 0..MAX_NEWTON_ITERATIONS {
+        let g: Vec<f64> = ev.gradient.iter().map(|x| sign * x).collect();
+        let gnorm = g.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if gnorm <= GRADIENT_TOL * ev.energy {
+            return LocalOptimum {
+                mu,
+                energy: ev.energy,
+                iterations: it,
+                converged: true,
+            };
+        }
+        // P H P
+        let h: Vec<f64> = ev.hessian.iter().map(|x| sign * x).collect();
+        let mut ph = vec![0.0; n * n];
+        let hmu: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| h[i * n + j] * mu[j]).sum())
+            .collect();
+        let muhmu: f64 = (0..n).map(|i| mu[i] * hmu[i]).sum();
+        for i in 0..n {
+            for j in 0..n {
+                ph[i * n + j] =
+                    h[i * n + j] - mu[i] * hmu[j] - hmu[i] * mu[j] + mu[i] * mu[j] * muhmu;
+            }
+        }
+        let (eig, vecs) = symmetric_eigen(&ph, n);
+        let top = eig.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let floor = (HESSIAN_FLOOR * top).max(f64::MIN_POSITIVE);
+        let mut d = vec![0.0; n];
+        for (k, &lam) in eig.iter().enumerate() {
+            let v: Vec<f64> = (0..n).map(|i| vecs[i * n + k]).collect();
+            let along: f64 = (0..n).map(|i| v[i] * mu[i]).sum();
+            if along.abs() > 0.5 {
+                continue; // the normal direction μ itself
+            }
+            let gv: f64 = (0..n).map(|i| g[i] * v[i]).sum();
+            let scale = gv / lam.abs().max(floor);
+            for i in 0..n {
+                d[i] -= scale * v[i];
+            }
+        }
+        let slope: f64 = (0..n).map(|i| g[i] * d[i]).sum();
+        let mut t = 1.0;
+        let mut accepted = None;
+        for _ in 0..MAX_HALVINGS {
+            let trial: Vec<f64> = normalized(&(0..n).map(|i| mu[i] + t * d[i]).collect::<Vec<_>>());
+            let et = energy(p, &trial);
+            if sign * et <= sign * ev.energy + ARMIJO * t * slope {
+                accepted = Some(trial);
+                break;
+            }
+            t *= 0.5;
+        }
+        match accepted {
+            Some(next) => {
+                mu = next;
+                ev = evaluate(p, &mu);
+            }
+            None => {
+                return LocalOptimum {
+                    mu,
+                    energy: ev.energy,
+                    iterations: it,
+                    converged: gnorm <= 1e3 * GRADIENT_TOL * ev.energy,
+                }
+            }
+        }
+    }
+    LocalOptimum {
+        mu,
+        energy: ev.energy,
+        iterations: MAX_NEWTON_ITERATIONS,
+        converged: false,
+    }
+}
