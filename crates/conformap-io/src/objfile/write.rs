@@ -41,22 +41,8 @@ pub(crate) fn encode_obj_with_uv(
         points.len(),
         faces.len()
     );
-    let mut parts = vec![header.into_bytes()];
-    parts.extend(blocks(points, 3 * 26, push_vertex));
-    parts.extend(blocks(uv, 2 * 26, |out, t| {
-        out.extend_from_slice(b"vt");
-        push_floats(out, t);
-    }));
-    parts.extend(blocks(faces, 3 * 18, |out, f| {
-        out.push(b'f');
-        for &i in f {
-            out.push(b' ');
-            push_index(out, i);
-            out.push(b'/');
-            push_index(out, i);
-        }
-        out.push(b'\n');
-    }));
+    let mut parts = vertex_and_vt_parts(header, points, uv);
+    parts.extend(blocks(faces, 3 * 18, |out, f| push_face_with_vt(out, f, f)));
     parts
 }
 
@@ -74,28 +60,39 @@ pub(crate) fn encode_obj_with_corner_uv(
         faces.len(),
         texcoords.len()
     );
-    let mut parts = vec![header.into_bytes()];
-    parts.extend(blocks(points, 3 * 26, push_vertex));
-    parts.extend(blocks(texcoords, 2 * 26, |out, t| {
-        out.extend_from_slice(b"vt");
-        push_floats(out, t);
-    }));
+    let mut parts = vertex_and_vt_parts(header, points, texcoords);
     let rows: Vec<([u32; 3], [u32; 3])> = faces
         .iter()
         .copied()
         .zip(uv_faces.iter().copied())
         .collect();
     parts.extend(blocks(&rows, 3 * 18, |out, (f, t)| {
-        out.push(b'f');
-        for k in 0..3 {
-            out.push(b' ');
-            push_index(out, f[k]);
-            out.push(b'/');
-            push_index(out, t[k]);
-        }
-        out.push(b'\n');
+        push_face_with_vt(out, f, t)
     }));
     parts
+}
+
+/// The header, the `v` lines and the `vt` lines.
+fn vertex_and_vt_parts(header: String, points: &[[f64; 3]], vt: &[[f64; 2]]) -> Vec<Vec<u8>> {
+    let mut parts = vec![header.into_bytes()];
+    parts.extend(blocks(points, 3 * 26, push_vertex));
+    parts.extend(blocks(vt, 2 * 26, |out, t| {
+        out.extend_from_slice(b"vt");
+        push_floats(out, t);
+    }));
+    parts
+}
+
+/// `f v/vt v/vt v/vt` (1-based) and the line end.
+fn push_face_with_vt(out: &mut Vec<u8>, f: &[u32; 3], t: &[u32; 3]) {
+    out.push(b'f');
+    for k in 0..3 {
+        out.push(b' ');
+        push_index(out, f[k]);
+        out.push(b'/');
+        push_index(out, t[k]);
+    }
+    out.push(b'\n');
 }
 
 /// Formats `rows` with `line`, in parallel blocks of [`BLOCK_ROWS`] when there are
