@@ -315,7 +315,7 @@ fn seamed_maps_render_and_batch_runs_global() {
 }
 
 #[test]
-fn the_uniform_objective_is_at_least_as_uniform_as_the_best_basis_form() {
+fn objectives_uniform_least_emphasize_and_zeros_through_the_cli() {
     let d = tmpdir("global-objective");
     let eight = fixture("eightsim.obj");
     let run = |extra: &[&str], tag: &str| {
@@ -324,16 +324,129 @@ fn the_uniform_objective_is_at_least_as_uniform_as_the_best_basis_form() {
         args.extend(extra);
         let o = conformap(&args);
         assert!(o.status.success(), "{}", stderr(&o));
-        json(&rep)["metrics"]["uniformity_energy"].as_f64().unwrap()
+        let (defect, _) = seam_translation_defect(&eight, &out);
+        assert!(defect < 1e-9, "{tag}: seam defect {defect:e}");
+        json(&rep)
     };
-    let basis = run(&[], "basis");
-    let uniform = run(&["--objective", "uniform", "--starts", "8"], "uniform");
+    let energy = |r: &serde_json::Value| r["metrics"]["uniformity_energy"].as_f64().unwrap();
+    // the default is the uniform optimum, with the least-uniform comparison
+    let uniform = run(&[], "uniform");
+    let basis = run(&["--objective", "basis"], "basis");
+    let least = run(&["--objective", "least-uniform"], "least");
+    let o = &uniform["global"]["objective"];
+    assert_eq!(o["objective"], "uniform");
+    assert!(energy(&uniform) < 0.99 * energy(&basis));
+    assert!(energy(&least) > energy(&basis));
+    let ratio = o["max_min_ratio"].as_f64().unwrap();
     assert!(
-        uniform <= basis * (1.0 + 1e-9),
-        "uniform {uniform} > basis {basis}"
+        (ratio - energy(&least) / energy(&uniform)).abs() < 1e-6 * ratio,
+        "{o}"
     );
+    assert!(o["search"]["reached_best"].as_u64().unwrap() >= 2, "{o}");
+    // emphasize / de-emphasize the faces listed in a region file (with a comment line)
+    let faces = conformap_io::read_raw_mesh(&eight).unwrap().faces.len();
+    let region = d.join("half.txt");
+    let listed: Vec<String> = (0..faces / 2).map(|f| f.to_string()).collect();
+    std::fs::write(&region, format!("# first half\n{}\n", listed.join("\n"))).unwrap();
+    let up = run(&["--objective", "emphasize", "--region", s(&region)], "up");
+    let down = run(
+        &["--objective", "de-emphasize", "--region", s(&region)],
+        "down",
+    );
+    let (eu, ed) = (
+        &up["global"]["objective"]["emphasis"],
+        &down["global"]["objective"]["emphasis"],
+    );
+    let (su, sd, surface) = (
+        eu["share"].as_f64().unwrap(),
+        ed["share"].as_f64().unwrap(),
+        eu["surface_share"].as_f64().unwrap(),
+    );
+    assert!(sd < surface && surface < su, "{eu} {ed}");
+    assert_eq!(eu["region_faces"], faces / 2);
+    // zeros where asked: on eightsim (genus 2) one target, exact
+    let z = run(&["--objective", "zeros", "--zeros", "60"], "zeros");
+    let t = &z["global"]["objective"]["zeros"];
+    assert_eq!(t["method"], "exact", "{t}");
     assert!(
-        uniform < 0.99 * basis,
-        "the search found nothing better: {uniform} vs {basis}"
+        t["targets"][0]["ring_distance"].as_u64().unwrap() <= 2,
+        "{t}"
     );
+    assert!(t["eigenvalue"].as_f64().unwrap() < 1e-20, "{t}");
+}
+
+/// A 24 × 12 torus (radii 2 and 0.7) written as OBJ.
+fn write_torus(path: &Path) {
+    let (n, m) = (24usize, 12usize);
+    let mut text = String::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (
+                std::f64::consts::TAU * i as f64 / n as f64,
+                std::f64::consts::TAU * j as f64 / m as f64,
+            );
+            let r = 2.0 + 0.7 * v.cos();
+            text += &format!("v {} {} {}\n", r * u.cos(), r * u.sin(), 0.7 * v.sin());
+        }
+    }
+    let id = |i: usize, j: usize| (i % n) * m + (j % m) + 1;
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            text += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn objective_options_are_checked_before_any_work() {
+    let d = tmpdir("global-objective-usage");
+    let eight = fixture("eightsim.obj");
+    let out = d.join("x.obj");
+    let region = d.join("r.txt");
+    std::fs::write(&region, "0\n1\n").unwrap();
+    let bad_region = d.join("bad.txt");
+    std::fs::write(&bad_region, "0\nseven\n").unwrap();
+    let far_region = d.join("far.txt");
+    std::fs::write(&far_region, "0\n999999\n").unwrap();
+    for (args, code, needle) in [
+        (vec!["--objective", "emphasize"], 2, "--region"),
+        (vec!["--region", s(&region)], 2, "only used with"),
+        (vec!["--objective", "zeros"], 2, "--zeros"),
+        (vec!["--zeros", "3"], 2, "only used with"),
+        (vec!["--objective", "zeros", "--zeros", "99999"], 2, "99999"),
+        (
+            vec!["--objective", "emphasize", "--region", s(&bad_region)],
+            1,
+            "line 2",
+        ),
+        (
+            vec!["--objective", "emphasize", "--region", s(&far_region)],
+            1,
+            "out of range",
+        ),
+    ] {
+        let mut all = vec!["global", s(&eight), "-o", s(&out)];
+        all.extend(args.iter().copied());
+        let o = conformap(&all);
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?} wrote output");
+    }
+    // genus 1 has no zeros to place
+    let torus = d.join("torus.obj");
+    write_torus(&torus);
+    let o = conformap(&[
+        "global",
+        s(&torus),
+        "-o",
+        s(&out),
+        "--objective",
+        "zeros",
+        "--zeros",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("genus"), "{}", stderr(&o));
 }

@@ -8,6 +8,8 @@
 //! changes neither angles nor seam translations. `--flat` gets the fundamental domain (the
 //! surface cut open along the seams) with the raw layout as `(u, v, 0)`.
 
+use std::path::{Path, PathBuf};
+
 use clap::{Args, ValueEnum};
 use conformap_global::{
     global_map, ConjugateMethod, GlobalMap, GlobalMapOptions, Objective, SeamedLayout,
@@ -18,6 +20,7 @@ use conformap_metrics::{corner_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
 use serde_json::json;
 
+use crate::commands::param::read_region;
 use crate::failure::Failure;
 use crate::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved, TexCoords};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
@@ -35,13 +38,22 @@ pub enum Conjugate {
 /// Which holomorphic form `global` lays out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum FormObjective {
-    /// The basis form of lowest uniformity energy (fast: no search).
-    Basis,
     /// The most uniform form (Jin et al. Eq. 6–7): a seeded multistart Newton search on the
-    /// coefficient sphere; seconds on genus 2–4 meshes today.
+    /// coefficient sphere (milliseconds: the energy is a quadratic form of precomputed
+    /// moments). The least uniform form is searched too, for the report's max/min ratio.
     Uniform,
     /// The least uniform form (the other end, as the paper's figures compare them).
     LeastUniform,
+    /// The form giving the faces of `--region` the largest share of the parameter area
+    /// (Eq. 8–9, a 2g × 2g generalized eigenproblem).
+    Emphasize,
+    /// The form giving the faces of `--region` the smallest share of the parameter area.
+    DeEmphasize,
+    /// The form whose zeros are nearest the vertices of `--zeros` (Eq. 13–14; genus ≥ 2;
+    /// exact for at most g − 1 targets, a least-squares compromise beyond).
+    Zeros,
+    /// The basis form of lowest uniformity energy (no search).
+    Basis,
 }
 
 /// Arguments of `conformap global`.
@@ -54,20 +66,26 @@ pub struct GlobalArgs {
     /// along the seams); `--flat` the fundamental domain with the layout as positions.
     #[command(flatten)]
     pub output: OutputArgs,
-    /// The holomorphic basis form to lay out (0 ≤ K < 2g). Default: the basis form of
-    /// lowest uniformity energy.
+    /// The holomorphic basis form to lay out (0 ≤ K < 2g), overriding `--objective`.
     #[arg(long, value_name = "K")]
     pub form: Option<usize>,
     /// The conjugate forms.
     #[arg(long, value_enum, default_value_t = Conjugate::Nearest)]
     pub conjugate: Conjugate,
-    /// Which form to lay out. Default `basis`: the uniform search costs seconds on genus
-    /// 2–4 meshes (eight 3.4 s, fertility 20 s with the default starts), far above a
-    /// factorization; it is 4.9× more uniform on eight.
-    #[arg(long, value_enum, default_value_t = FormObjective::Basis)]
+    /// Which form to lay out (Jin et al. §3.2–3.3, §3.6).
+    #[arg(long, value_enum, default_value_t = FormObjective::Uniform)]
     pub objective: FormObjective,
+    /// The faces to emphasize or de-emphasize: one 0-based face index per line, `#`
+    /// comments (the format `mobius --region` reads). Needed by `--objective emphasize` and
+    /// `de-emphasize`.
+    #[arg(long, value_name = "FACES.txt")]
+    pub region: Option<PathBuf>,
+    /// The vertices (0-based, comma-separated) where `--objective zeros` puts the form's
+    /// zeros.
+    #[arg(long, value_name = "V1,V2,…", value_delimiter = ',', num_args = 1..)]
+    pub zeros: Option<Vec<usize>>,
     /// Random starts of the uniform search (besides the 2g basis forms). Default: the
-    /// library's (48).
+    /// library's.
     #[arg(long, value_name = "N")]
     pub starts: Option<usize>,
     /// Root vertex of the homology generators' shortest-path tree (0-based). Default 0.
@@ -76,17 +94,30 @@ pub struct GlobalArgs {
 }
 
 impl GlobalArgs {
-    /// The library options these arguments ask for.
-    pub fn options(&self) -> GlobalMapOptions {
+    /// `--objective` as spelled on the command line.
+    fn objective_name(&self) -> String {
+        self.objective
+            .to_possible_value()
+            .map_or_else(String::new, |v| v.get_name().to_string())
+    }
+
+    /// The library options these arguments ask for; `region` the faces of `--region`, as
+    /// read (empty when there is none).
+    pub fn options(&self, region: Vec<usize>) -> GlobalMapOptions {
         let mut search = conformap_global::FormSearchOptions::DEFAULT;
         search.starts = self.starts.unwrap_or(search.starts);
-        // the least-uniform comparison doubles the search; only `least-uniform` needs it
-        search.compare = false;
         GlobalMapOptions::DEFAULT
             .with_objective(match self.objective {
                 FormObjective::Basis => Objective::BestBasisForm,
                 FormObjective::Uniform => Objective::Uniform,
                 FormObjective::LeastUniform => Objective::LeastUniform,
+                FormObjective::Emphasize | FormObjective::DeEmphasize => Objective::Emphasize {
+                    faces: region,
+                    maximize: self.objective == FormObjective::Emphasize,
+                },
+                FormObjective::Zeros => Objective::Zeros {
+                    vertices: self.zeros.clone().unwrap_or_default(),
+                },
             })
             .with_search(search)
             .with_form(self.form)
@@ -115,6 +146,40 @@ impl MapCommand for GlobalArgs {
         &self.output
     }
 
+    fn other_inputs(&self) -> Vec<&Path> {
+        self.region.as_deref().into_iter().collect()
+    }
+
+    fn check_usage(&self) -> Result<(), Failure> {
+        let regional = matches!(
+            self.objective,
+            FormObjective::Emphasize | FormObjective::DeEmphasize
+        );
+        match (regional, &self.region) {
+            (true, None) => {
+                return Err(Failure::Usage(format!(
+                    "--objective {} needs --region FACES.txt",
+                    self.objective_name()
+                )))
+            }
+            (false, Some(_)) => {
+                return Err(Failure::Usage(
+                    "--region is only used with --objective emphasize or de-emphasize".to_string(),
+                ))
+            }
+            _ => {}
+        }
+        match (self.objective == FormObjective::Zeros, &self.zeros) {
+            (true, None) => Err(Failure::Usage(
+                "--objective zeros needs --zeros V1,V2,… (0-based vertices)".to_string(),
+            )),
+            (false, Some(_)) => Err(Failure::Usage(
+                "--zeros is only used with --objective zeros".to_string(),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
         // one factorization of the Laplacian of the surface the forms live on: the input,
         // or its double covering (twice the vertices and edges)
@@ -135,8 +200,23 @@ impl MapCommand for GlobalArgs {
                 mesh.num_vertices()
             )));
         }
+        if let Some(&v) = self
+            .zeros
+            .iter()
+            .flatten()
+            .find(|&&v| v >= mesh.num_vertices())
+        {
+            return Err(Failure::Usage(format!(
+                "--zeros: {v} is not a vertex: the mesh has {} (0-based)",
+                mesh.num_vertices()
+            )));
+        }
+        let region = match &self.region {
+            Some(path) => read_region(path, mesh.num_faces())?,
+            None => Vec::new(),
+        };
         let fail = |e: conformap_global::GlobalError| input.fail(e.into());
-        let map = global_map(mesh, &self.options()).map_err(fail)?;
+        let map = global_map(mesh, &self.options(region)).map_err(fail)?;
         let seamed = map.seamed_layout(mesh).map_err(fail)?;
         let t = std::time::Instant::now();
         let written = seamed.mesh.as_ref().unwrap_or(mesh);
@@ -230,18 +310,47 @@ fn summary(mesh: &TriMesh, map: &GlobalMap, at_zeros: usize, outside: usize) -> 
         String::new()
     };
     format!(
-        "{} vertices, {} faces, genus {}{cover}; form {} of {}{tau}; {} zero(s), folds {at_zeros} \
+        "{} vertices, {} faces, genus {}{cover}; {}{tau}; {} zero(s), folds {at_zeros} \
          at zeros / {outside} elsewhere; mean angle distortion {:.3}° away from zeros, \
          uniformity {:.3e}",
         mesh.num_vertices(),
         mesh.num_faces(),
         map.genus,
-        map.form_index,
-        2 * map.surface_genus,
+        objective_summary(map),
         map.input_zeros().count(),
         map.metrics.angle_distortion_away_from_zeros_deg.mean,
         map.metrics.uniformity_energy,
     )
+}
+
+/// The chosen form, in words: the objective and what it reached.
+fn objective_summary(map: &GlobalMap) -> String {
+    let o = &map.objective;
+    let of = 2 * map.surface_genus;
+    let detail = if let Some(e) = &o.emphasis {
+        format!(
+            " (region share {:.3} of the parameter area, {:.3} of the surface's)",
+            e.share, e.surface_share
+        )
+    } else if let Some(z) = &o.zeros {
+        let rings: Vec<String> = z
+            .targets
+            .iter()
+            .map(|t| match t.ring_distance {
+                Some(d) => format!("v{} {d}", t.vertex),
+                None => format!("v{} none", t.vertex),
+            })
+            .collect();
+        format!(" (edge rings to the nearest zero: {})", rings.join(", "))
+    } else if let Some(r) = o.max_min_ratio.filter(|_| o.search.is_some()) {
+        format!(" (max/min uniformity {r:.2})")
+    } else {
+        String::new()
+    };
+    match o.objective.as_str() {
+        "basis" => format!("basis form {} of {of}", map.form_index),
+        name => format!("{name} form{detail}"),
+    }
 }
 
 /// The report's `global` section.

@@ -7,12 +7,11 @@
 //! `D̃ = W D W`, whose extreme eigenvectors are the exact optima (no Newton needed, papers
 //! README).
 
-use conformap_mesh::{EdgeIndex, TriMesh};
+use conformap_mesh::TriMesh;
 use serde::{Deserialize, Serialize};
 
 use crate::forms::dense::symmetric_eigen;
 use crate::forms::optimal::products::AreaProducts;
-use crate::forms::periods::ComplexCochain;
 
 /// The emphasized-area result.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -74,55 +73,6 @@ pub fn emphasize(p: &AreaProducts, region: &[bool], maximize: bool) -> (Vec<f64>
         eigenvalues,
     };
     (mu, report)
-}
-
-/// `|ω(v)|²` of Eq. 14 made a quadratic form: the mean over the edges `e` at each target
-/// of `|φ(e)|² / |e|²` (the square of the paper's edge mean, taken inside the mean so that
-/// it is quadratic in the coefficients), summed over the targets, in whitened coordinates.
-pub fn zero_form(
-    mesh: &TriMesh,
-    edges: &EdgeIndex,
-    forms: &[ComplexCochain],
-    p: &AreaProducts,
-    targets: &[usize],
-) -> Vec<f64> {
-    let n = p.n;
-    let mut is_target = vec![false; mesh.num_vertices()];
-    for &v in targets {
-        is_target[v] = true;
-    }
-    let mut degree = vec![0usize; mesh.num_vertices()];
-    let mut per_vertex: Vec<Option<Vec<f64>>> = vec![None; mesh.num_vertices()];
-    for (e, &h) in edges.halfedge.iter().enumerate() {
-        let (a, b) = mesh.halfedge_vertices(h as usize);
-        if !(is_target[a as usize] || is_target[b as usize]) {
-            continue;
-        }
-        let (pa, pb) = (mesh.positions()[a as usize], mesh.positions()[b as usize]);
-        let len2 = (0..3).map(|i| (pa[i] - pb[i]).powi(2)).sum::<f64>();
-        let z = p.whitened_edge(forms, e);
-        for v in [a as usize, b as usize] {
-            if !is_target[v] {
-                continue;
-            }
-            degree[v] += 1;
-            let m = per_vertex[v].get_or_insert_with(|| vec![0.0; n * n]);
-            for k in 0..n {
-                for j in 0..n {
-                    m[k * n + j] += (z[k].conj() * z[j]).re / len2;
-                }
-            }
-        }
-    }
-    let mut total = vec![0.0; n * n];
-    for &v in targets {
-        if let Some(m) = &per_vertex[v] {
-            for (t, x) in total.iter_mut().zip(m) {
-                *t += x / degree[v] as f64;
-            }
-        }
-    }
-    total
 }
 
 /// Edge-ring distance (breadth-first over the edges of `mesh`) from `source` to the nearest

@@ -3,18 +3,26 @@
 //!
 //! Module map:
 //! - `products.rs`: per-face `2g × 2g` area forms, whitened by the total area form.
+//! - `moments.rs`: the second moments of the area forms, so that the energy and its
+//!   derivatives cost `O((2g)⁴)` whatever the face count.
 //! - `uniform.rs`: the scale-free uniformity energy (Eq. 6–7), analytic gradient and
 //!   Hessian, saddle-free Newton on the coefficient sphere.
 //! - `search.rs`: the seeded multistart ([`FormSearchOptions`], [`UniformSearch`]).
+//! - `targets.rs`: zero allocation as linear conditions (the form's value at a vertex),
+//!   the subspace of forms vanishing at the targets.
 //! - `eigen.rs`: the emphasized area (Eq. 8–9) and the zero allocation (Eq. 13–14) as
 //!   symmetric eigenproblems ([`EmphasisReport`]), edge-ring distances.
 //! - `mod.rs` (here): [`Objective`], [`ObjectiveReport`], the dispatch.
 
 mod eigen;
+mod moments;
 mod products;
 mod search;
+mod targets;
 mod uniform;
 
+#[cfg(test)]
+mod real_tests;
 #[cfg(test)]
 mod tests;
 
@@ -55,9 +63,10 @@ pub enum Objective {
         /// Maximize (emphasize) or minimize (de-emphasize) the region's share.
         maximize: bool,
     },
-    /// The form with zeros nearest the given input vertices (Eq. 13–14): minimizes
-    /// `Σ |ω(v_i)|²` under the area constraint. Exact for at most `g − 1` targets (the
-    /// least-squares compromise beyond). Needs genus ≥ 2.
+    /// The form with zeros at the given input vertices (Eq. 13–14): for at most `g − 1`
+    /// targets the most uniform form among those vanishing at every target (exact, see
+    /// `targets.rs`); beyond, the least `Σ |ω(v_i)|²` under the area constraint (the
+    /// compromise). Needs genus ≥ 2.
     Zeros {
         /// Target vertices (0-based, of the input).
         vertices: Vec<usize>,
@@ -102,12 +111,16 @@ pub struct ZeroTarget {
 pub struct ZeroAllocationReport {
     /// Per target.
     pub targets: Vec<ZeroTarget>,
-    /// Whether an exact solution exists in theory (`n ≤ g − 1` targets).
+    /// Whether an exact solution exists in theory (`n ≤ g − 1` distinct targets).
     pub exact_expected: bool,
+    /// `exact`: the most uniform form among those vanishing at every target (`n ≤ g − 1`;
+    /// [`ObjectiveReport::search`] is that search); `least-squares`: the form of least
+    /// `Σ |ω(v_i)|²` per unit parameter area (more targets than a form has free zeros).
+    pub method: String,
     /// The median `|ω(v)|` over the input's vertices (the residuals' yardstick).
     pub median_stretch: f64,
-    /// The smallest eigenvalue of the target form (the minimized `Σ |ω(v_i)|²` per unit
-    /// parameter area).
+    /// `Σ |ω(v_i)|²` of the chosen form per unit parameter area, `ω(v)` the fitted value of
+    /// `targets.rs` (rounding level for `exact`).
     pub eigenvalue: f64,
 }
 
@@ -124,8 +137,9 @@ pub struct ObjectiveReport {
     pub uniformity: f64,
     /// The uniformity energy of each basis form.
     pub basis_uniformity: Vec<f64>,
-    /// The search of the objective (`Uniform`, `LeastUniform`); `None` for genus 1 (nothing
-    /// to choose) and the other objectives.
+    /// The search of the objective (`Uniform`, `LeastUniform`, and `Zeros` with an exact
+    /// solution: the search within the forms vanishing at the targets); `None` for genus 1
+    /// (nothing to choose) and the other objectives.
     pub search: Option<UniformSearch>,
     /// The opposite extreme's search when [`FormSearchOptions::compare`].
     pub opposite: Option<UniformSearch>,
@@ -188,9 +202,10 @@ pub(crate) fn choose(
         }
         (None, Objective::Uniform | Objective::LeastUniform) => {
             let maximize = matches!(objective, Objective::LeastUniform);
-            let found = search::multistart(&p, maximize, search);
+            let moments = moments::Moments::new(&p);
+            let found = search::multistart(&p, &moments, maximize, search);
             if search.compare {
-                let other = search::multistart(&p, !maximize, search);
+                let other = search::multistart(&p, &moments, !maximize, search);
                 let (hi, lo) = if maximize {
                     (found.energy, other.energy)
                 } else {
@@ -228,10 +243,28 @@ pub(crate) fn choose(
                     reason: "needs at least one target vertex",
                 });
             }
-            let m = eigen::zero_form(s.mesh, s.edges, s.forms, &p, vertices);
-            let (value, mu, _) = eigen::extreme_eigenpair(&m, n, false);
+            let mut targets = vertices.clone();
+            targets.sort_unstable();
+            targets.dedup();
+            let m = targets::condition_gram(s.mesh, s.edges, s.forms, &p, &targets);
+            let free = n.saturating_sub(2 * targets.len());
+            let (mu, method) = if free >= 2 {
+                // exact zeros: the most uniform form of the subspace vanishing at the targets
+                let basis = targets::null_space(&m, n, free);
+                let sub = targets::restricted(&p, &basis, free);
+                let moments = moments::Moments::new(&sub);
+                let found = search::multistart(&sub, &moments, false, &search.with_compare(false));
+                let mu = targets::lift(&basis, &found.mu, n);
+                search_out = Some(found);
+                (mu, "exact")
+            } else {
+                // no form vanishes at all targets: the least Σ|ω(v_i)|² per unit area
+                let (_, mu, _) = eigen::extreme_eigenpair(&m, n, false);
+                (mu, "least-squares")
+            };
+            let value = products::quadratic(&m, &mu);
             zeros = Some(ZeroAllocationReport {
-                targets: vertices
+                targets: targets
                     .iter()
                     .map(|&vertex| ZeroTarget {
                         vertex,
@@ -240,7 +273,8 @@ pub(crate) fn choose(
                         residual: f64::NAN,
                     })
                     .collect(),
-                exact_expected: vertices.len() < n / 2,
+                exact_expected: free >= 2,
+                method: method.to_owned(),
                 median_stretch: f64::NAN,
                 eigenvalue: value,
             });

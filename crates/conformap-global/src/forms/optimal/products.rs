@@ -158,7 +158,6 @@ fn fill_area_form(a: &[Complex64], b: &[Complex64], q: &mut [f64]) {
 }
 
 /// `μᵀ M μ` for a row-major `n × n` matrix.
-#[cfg(test)]
 pub fn quadratic(m: &[f64], mu: &[f64]) -> f64 {
     let n = mu.len();
     (0..n)

@@ -7,6 +7,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::forms::optimal::moments::Moments;
 use crate::forms::optimal::products::AreaProducts;
 use crate::forms::optimal::uniform::{local_search, LocalOptimum};
 
@@ -136,8 +137,13 @@ pub fn random_directions(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The multistart search of the most (`maximize = false`) or least uniform form.
-pub fn multistart(p: &AreaProducts, maximize: bool, options: &FormSearchOptions) -> UniformSearch {
+/// The multistart search (with `p`'s moments) of the most (`maximize = false`) or least uniform form.
+pub fn multistart(
+    p: &AreaProducts,
+    moments: &Moments,
+    maximize: bool,
+    options: &FormSearchOptions,
+) -> UniformSearch {
     let t = Instant::now();
     let n = p.n;
     let mut starts: Vec<Vec<f64>> = (0..n)
@@ -150,7 +156,7 @@ pub fn multistart(p: &AreaProducts, maximize: bool, options: &FormSearchOptions)
     starts.extend(random_directions(n, options.starts, options.seed));
     let results: Vec<LocalOptimum> = starts
         .par_iter()
-        .map(|s| local_search(p, s, maximize))
+        .map(|s| local_search(moments, s, maximize))
         .collect();
     let better = |a: f64, b: f64| if maximize { a > b } else { a < b };
     let mut energies: Vec<f64> = results.iter().map(|r| r.energy).collect();

@@ -6,6 +6,7 @@ use conformap_mesh::TriMesh;
 use conformap_testkit::{fixture_path, read_plain_obj};
 use num_complex::Complex64;
 
+use super::moments::Moments;
 use super::products::{area_products, quadratic};
 use super::search::random_directions;
 use super::uniform::{energy, evaluate};
@@ -58,9 +59,11 @@ fn gradient_and_hessian_match_finite_differences() {
     let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
     let p = area_products(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
     let n = p.n;
+    let moments = Moments::new(&p);
     for dir in random_directions(n, 3, 7) {
         let mu = unit(dir);
-        let ev = evaluate(&p, &mu);
+        let ev = evaluate(&moments, &mu);
+        assert!((moments.energy(&mu) - energy(&p, &mu)).abs() < 1e-15);
         assert!((ev.energy - energy(&p, &mu)).abs() < 1e-15);
         let h = 1e-6;
         for i in 0..n {
@@ -81,7 +84,10 @@ fn gradient_and_hessian_match_finite_differences() {
                 up.iter().map(|x| x * x).sum::<f64>().sqrt(),
                 dn.iter().map(|x| x * x).sum::<f64>().sqrt(),
             );
-            let (gu, gd) = (evaluate(&p, &nu).gradient, evaluate(&p, &nd).gradient);
+            let (gu, gd) = (
+                evaluate(&moments, &nu).gradient,
+                evaluate(&moments, &nd).gradient,
+            );
             let scale: f64 = ev.hessian.iter().map(|x| x.abs()).fold(0.0, f64::max);
             for j in 0..n {
                 let fd = (gu[j] / lu - gd[j] / ld) / (2.0 * h);
@@ -363,4 +369,71 @@ fn surfaces_with_boundary_are_optimized_on_the_users_copy() {
         bad,
         Err(crate::GlobalError::ZeroTargetOutOfRange { .. })
     ));
+}
+
+#[test]
+fn vertex_values_fit_holomorphic_forms_and_vanish_at_exact_targets() {
+    let mesh = eightsim();
+    let map = global_map(&mesh, &GlobalMapOptions::DEFAULT).expect("map");
+    let p = area_products(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
+    // the fit φ(e) ≈ c·ẽ of the chosen (uniform) form explains most of the star's values at
+    // a vertex away from zeros (it would explain none with the frame's orientation flipped)
+    let mu = p.whiten(&map.objective.coefficients);
+    let v = 5;
+    let c = super::targets::vertex_values(&map.surface, &map.edges, &map.basis_forms, &p, v);
+    let cv: Complex64 = c.iter().zip(&mu).map(|(c, m)| c * m).sum();
+    let (mut phi2, mut len2) = (0.0, 0.0);
+    for (e, &h) in map.edges.halfedge.iter().enumerate() {
+        let (a, b) = map.surface.halfedge_vertices(h as usize);
+        if a as usize == v || b as usize == v {
+            let (pa, pb) = (
+                map.surface.positions()[a as usize],
+                map.surface.positions()[b as usize],
+            );
+            len2 += (0..3).map(|i| (pa[i] - pb[i]).powi(2)).sum::<f64>();
+            let z: Complex64 = p
+                .whitened_edge(&map.basis_forms, e)
+                .iter()
+                .zip(&mu)
+                .map(|(z, m)| z * m)
+                .sum();
+            phi2 += z.norm_sqr();
+        }
+    }
+    let explained = cv.norm_sqr() * len2 / phi2;
+    assert!(
+        explained > 0.8,
+        "the fit explains {explained:.3} of the star's |φ|²"
+    );
+    let targets = [10usize, 120];
+    let m = super::targets::condition_gram(
+        &map.surface,
+        &map.edges,
+        &map.basis_forms,
+        &p,
+        &targets[..1],
+    );
+    let basis = super::targets::null_space(&m, p.n, p.n - 2);
+    for col in 0..p.n - 2 {
+        let nu: Vec<f64> = (0..p.n - 2)
+            .map(|k| if k == col { 1.0 } else { 0.0 })
+            .collect();
+        let mu = super::targets::lift(&basis, &nu, p.n);
+        // in the null space of the conditions, against their scale (the trace)
+        let trace: f64 = (0..p.n).map(|i| m[i * p.n + i]).sum();
+        assert!(quadratic(&m, &mu) <= 1e-12 * trace);
+        assert!((mu.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-12);
+    }
+    let zeros = global_map(
+        &mesh,
+        &GlobalMapOptions::DEFAULT.with_objective(Objective::Zeros {
+            vertices: vec![targets[0]],
+        }),
+    )
+    .expect("map");
+    let z = zeros.objective.zeros.as_ref().expect("zeros");
+    assert_eq!(z.method, "exact");
+    // Σ|ω(v_i)|² per unit area at rounding level, against ~|ω|² ≈ 1/area elsewhere
+    assert!(z.eigenvalue < 1e-20, "{z:?}");
+    assert!(zeros.objective.search.is_some());
 }
