@@ -2,7 +2,7 @@
 //! report and the time of every stage:
 //!
 //! ```text
-//! cargo run --release -p conformap-morph --example faces -- [--hard] [--lambda X] [--frames N] \
+//! cargo run --release -p conformap-morph --example faces -- [--hard] [--lambda X] [--frames N] [--support R] [--step S] \
 //!     S1.obj S1.landmarks.txt S2.obj S2.landmarks.txt [...]
 //! ```
 //!
@@ -23,6 +23,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--hard" => options = options.with_hard_landmarks(),
             "--lambda" => options = options.with_lambda(args.remove(k).parse()?),
             "--frames" => frames = args.remove(k).parse()?,
+            "--support" => options.register.warp.support = args.remove(k).parse()?,
+            "--step" => options.register.warp.step = args.remove(k).parse()?,
             other => return Err(format!("unknown flag {other}").into()),
         }
     }

@@ -12,15 +12,16 @@
 //! - `normalize`: [`normalize_disk_map`] — the paper's `m₁`: first landmark to the centre,
 //!   second onto the positive real axis.
 //! - `register`: [`register_disk`] — Eq. 34, `E_D + λ Σ|h(l_j) − t_j|²`, boundary sliding
-//!   on the circle, soft or hard landmarks ([`LandmarkMode`]), the fold check and λ
-//!   back-off ([`Registration`], [`RegistrationReport`]).
+//!   on the circle, soft or hard landmarks ([`LandmarkMode`]), the fold check, the λ
+//!   back-off and, where Eq. 34 folds, the fold-free landmark warp ([`WarpOptions`]) that
+//!   brings the landmarks the rest of the way ([`Registration`], [`RegistrationReport`]).
 //! - `locate`: [`TriangleGrid`] — point location in a registered disk ([`Location`]).
 //! - `homotopy`: [`CubicHomotopy`] — the natural cubic spline in time, as K weight
 //!   functions.
 //! - `morph`: [`morph`] → [`Morph`] — all of the above for K surfaces, with a
 //!   [`MorphReport`] per key surface; [`Morph::frame`] gives the positions at any time.
-//! - `quality`: checks of frames (flips against the key surface, fold patches, degenerate
-//!   faces, steps, point–triangle distance).
+//! - `quality`: checks of frames (flips against the key surface, creases, fold patches,
+//!   degenerate faces, steps, point–triangle distance).
 //!
 //! # Example
 //! ```
@@ -60,6 +61,7 @@ pub use morph::{
 pub use normalize::{normalize_disk_map, Normalized, NORMALIZE_BOUNDARY_TOL};
 pub use register::{
     folded_faces, register_disk, LandmarkMode, RegisterOptions, Registration, RegistrationReport,
-    DEFAULT_LAMBDA, LAMBDA_BACKOFF, LAMBDA_BISECTIONS, MAX_LAMBDA_BACKOFFS, REGISTER_MAX_SWEEPS,
-    REGISTER_SWEEP_TOL,
+    WarpOptions, WarpReport, DEFAULT_LAMBDA, LAMBDA_BACKOFF, LAMBDA_BISECTIONS,
+    MAX_LAMBDA_BACKOFFS, REGISTER_MAX_SWEEPS, REGISTER_SWEEP_TOL, SEARCH_SWEEPS, WARP_MAX_STEPS,
+    WARP_STEP, WARP_SUPPORT,
 };

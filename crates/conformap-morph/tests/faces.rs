@@ -24,8 +24,10 @@ fn fixtures() -> PathBuf {
 }
 
 /// Every claim of the issue that holds per key surface; returns the largest landmark
-/// error (relative to the diagonal) over the key surfaces.
-fn check(surfaces: &[Surface], m: &Morph, frames: usize) -> f64 {
+/// error (relative to the diagonal) over the key surfaces. `patch`: the largest group of
+/// flipped key-frame faces allowed (all of them on the pleated hole fills); away from
+/// creases only isolated slivers are allowed.
+fn check(surfaces: &[Surface], m: &Morph, frames: usize, patch: usize) -> f64 {
     let s1 = &surfaces[0].mesh;
     let times = m.frame_times(frames).unwrap();
     let keys = m.key_frames(frames).unwrap();
@@ -53,9 +55,22 @@ fn check(surfaces: &[Surface], m: &Morph, frames: usize) -> f64 {
         let r = &m.report.keys[k];
         let reg = r.registration.as_ref().unwrap();
         assert_eq!(reg.folded_faces, 0, "surface {k}: {:?}", reg.notes);
-        // no fold patch: flipped faces of the key frame are slivers, at most 3 joined
-        // (measured: 3 on wry and on pout with the default λ after the back-off)
-        assert!(r.key_frame_largest_flip_patch <= 3, "surface {k}: {r:?}");
+        // Eq. 34 folds on these faces at λ = 1000 and in hard mode: the landmark warp ran
+        // and reached its goals
+        let warp = reg.warp.unwrap();
+        assert!(warp.reached && warp.steps >= 1, "surface {k}: {warp:?}");
+        // flipped faces of the key frame: away from creases isolated slivers at most
+        // (measured: none on wry and pout); on the pleated fills of the closed eye and
+        // mouth holes, where the key surface's own normal flips from face to face,
+        // patches up to `patch` (measured 15 on wry, 18 on pout)
+        assert!(
+            r.key_frame_largest_flip_patch_off_creases <= 1,
+            "surface {k}: {r:?}"
+        );
+        assert!(
+            r.key_frame_largest_flip_patch <= patch,
+            "surface {k}: {r:?}"
+        );
         worst = worst.max(r.landmark_error_max_rel);
     }
     // smooth in time, no degenerate face in any frame
@@ -88,11 +103,21 @@ fn neutral_to_pout_soft_and_hard() {
         surface(&fixtures(), "ict_pout"),
     ];
     let soft = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
-    let soft_err = check(&surfaces, &soft, 30);
-    // measured 5.0e-2 (λ backed off to 4.3e-2 to avoid folds): see the README
-    assert!(soft_err < 0.06, "soft landmark error {soft_err:.3e}");
+    let soft_err = check(&surfaces, &soft, 30, 18);
+    // measured 9.0e-4: Eq. 34 at λ = 1000 folds 56 faces; λ backed off to 4.3e-2, then
+    // the landmark warp to where λ = 1000 puts the landmarks (see the README)
+    assert!(soft_err < 0.01, "soft landmark error {soft_err:.3e}");
+    let lambda = soft.report.keys[1]
+        .registration
+        .as_ref()
+        .unwrap()
+        .lambda_used;
+    assert!(lambda.is_some_and(|l| l > 0.01 && l < 0.1), "{lambda:?}");
     let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks())
         .unwrap_or_else(|e| panic!("{e}"));
+    // hard landmarks fold nothing either (the hard Eq. 34 alone folds 56 faces)
+    let hard_err = check(&surfaces, &hard, 30, 18);
+    assert!(hard_err <= 1e-9, "hard landmark error {hard_err:.3e}");
     let t = hard.frame_times(30).unwrap();
     let last = hard.frame(t[29]);
     let s2 = &surfaces[1].mesh;
@@ -117,7 +142,8 @@ fn shared_three_faces_sixty_frames() {
         .map(|n| surface(&dir, n))
         .collect();
     let m = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
-    let worst = check(&surfaces, &m, 60);
-    assert!(worst < 0.06, "landmark error {worst:.3e}");
+    let worst = check(&surfaces, &m, 60, 18);
+    // measured 1.6e-4 (wry) and 9.0e-4 (pout)
+    assert!(worst < 0.01, "landmark error {worst:.3e}");
     assert_eq!(m.key_frames(60).unwrap(), vec![0, 30, 59]);
 }

@@ -37,11 +37,13 @@ pub struct MorphArgs {
     /// directory: `frame_0000.obj` …).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Landmark weight λ of Eq. 34 (default: the library's `DEFAULT_LAMBDA`); lowered
-    /// when the registration folds (the report says so).
+    /// Landmark weight λ of Eq. 34 (default: the library's `DEFAULT_LAMBDA`). Where
+    /// Eq. 34 folds, the largest λ without a fold and a fold-free landmark warp bring the
+    /// landmarks to where λ puts them (the report says so).
     #[arg(long, conflicts_with = "hard")]
     pub lambda: Option<f64>,
-    /// Put the landmarks exactly on their counterparts (hard constraints).
+    /// Put the landmarks exactly on their counterparts (hard constraints; where they
+    /// fold, the same fold-free landmark warp finishes).
     #[arg(long)]
     pub hard: bool,
     /// Write a JSON report here.

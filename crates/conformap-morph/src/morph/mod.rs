@@ -10,7 +10,7 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::quality::{flipped_against_key, largest_patch};
+use crate::quality::{crease_faces, flipped_against_key, largest_patch, CREASE_ANGLE_DEG};
 use crate::{
     normalize_disk_map, register_disk, CubicHomotopy, LandmarkMode, Landmarks, Location,
     MorphError, RegisterOptions, TriangleGrid,
@@ -272,6 +272,8 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
         })
         .collect::<Result<Vec<_>, MorphError>>()?;
 
+    let s1_mesh = &surfaces[0].mesh;
+    let crease_1 = crease_faces(s1_mesh.positions(), s1_mesh.faces(), CREASE_ANGLE_DEG);
     let mut keys = vec![surfaces[0].mesh.positions().to_vec()];
     let mut locations = vec![Vec::new()];
     let mut reports = vec![key_report(0, surfaces, &prepared[0], &homotopy, None)];
@@ -296,6 +298,22 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
         );
         r.key_frame_flipped_faces = flips.len();
         r.key_frame_largest_flip_patch = largest_patch(surfaces[0].mesh.faces(), &flips);
+        // the flips away from creases of S1 and of this surface (hole fills, lip lines)
+        let sk = &surfaces[k].mesh;
+        let crease_k = crease_faces(sk.positions(), sk.faces(), CREASE_ANGLE_DEG);
+        let elsewhere: Vec<usize> = flips
+            .iter()
+            .copied()
+            .filter(|&f| {
+                !crease_1[f]
+                    && surfaces[0].mesh.faces()[f]
+                        .iter()
+                        .all(|&v| !crease_k[locs[v as usize].face as usize])
+            })
+            .collect();
+        r.key_frame_flips_off_creases = elsewhere.len();
+        r.key_frame_largest_flip_patch_off_creases =
+            largest_patch(surfaces[0].mesh.faces(), &elsewhere);
         r.registration = Some(reg.report);
         r.timings_ms.register = register_ms;
         r.timings_ms.locate = locate_ms;
@@ -430,6 +448,8 @@ fn key_report(
         landmark_errors_rel: errors,
         key_frame_flipped_faces: 0,
         key_frame_largest_flip_patch: 0,
+        key_frame_flips_off_creases: 0,
+        key_frame_largest_flip_patch_off_creases: 0,
         timings_ms: KeyTimings {
             disk_map: prep.disk_ms,
             normalize: prep.normalize_ms,

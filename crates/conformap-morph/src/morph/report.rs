@@ -74,6 +74,14 @@ pub struct KeyReport {
     pub key_frame_flipped_faces: usize,
     /// The largest edge-connected group of such faces (1 = isolated slivers only).
     pub key_frame_largest_flip_patch: usize,
+    /// Of [`Self::key_frame_flipped_faces`], those away from creases: no crease face of S1
+    /// (a face with a vertex on an edge whose faces' normals turn by more than
+    /// [`crate::quality::CREASE_ANGLE_DEG`]) and no vertex located in a crease face of
+    /// this surface. On the shared faces the creases are the pleated fills of the closed
+    /// eye and mouth holes, where "the key surface's normal" flips from face to face.
+    pub key_frame_flips_off_creases: usize,
+    /// The largest edge-connected group of [`Self::key_frame_flips_off_creases`].
+    pub key_frame_largest_flip_patch_off_creases: usize,
     /// Per stage.
     pub timings_ms: KeyTimings,
 }

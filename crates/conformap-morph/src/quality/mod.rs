@@ -10,6 +10,12 @@ use crate::Location;
 /// the smallest face of the shared faces is about 1e-6 of the squared diagonal).
 pub const DEGENERATE_AREA_REL: f64 = 1e-14;
 
+/// Two faces sharing an edge make a crease when their normals turn by more than this
+/// many degrees: `90` (the normals oppose each other; the zipped hole fills of the
+/// shared faces are pleated like that, about 170 edges per face, while the skin has no
+/// such edge).
+pub const CREASE_ANGLE_DEG: f64 = 90.0;
+
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
@@ -72,6 +78,50 @@ pub fn flipped_against_key(
             !(dot(face_normal(frame, f), reference) > 0.0)
         })
         .map(|(k, _)| k)
+        .collect()
+}
+
+/// Faces at a crease: every face with a vertex on an edge whose two faces' normals turn
+/// by more than `angle_deg` degrees (e.g. [`CREASE_ANGLE_DEG`]). One flag per face.
+pub fn crease_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) -> Vec<bool> {
+    let cos = angle_deg.to_radians().cos();
+    let unit: Vec<[f64; 3]> = faces
+        .iter()
+        .map(|f| {
+            let n = face_normal(positions, f);
+            let l = norm(n);
+            if l > 0.0 {
+                [n[0] / l, n[1] / l, n[2] / l]
+            } else {
+                n
+            }
+        })
+        .collect();
+    let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (k, t) in faces.iter().enumerate() {
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            edge_faces.entry((a.min(b), a.max(b))).or_default().push(k);
+        }
+    }
+    let nv = faces
+        .iter()
+        .flat_map(|f| f.iter())
+        .map(|&v| v as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let mut on_crease = vec![false; nv];
+    for (&(a, b), list) in &edge_faces {
+        if let [f, g] = list[..] {
+            if dot(unit[f], unit[g]) < cos {
+                on_crease[a as usize] = true;
+                on_crease[b as usize] = true;
+            }
+        }
+    }
+    faces
+        .iter()
+        .map(|f| f.iter().any(|&v| on_crease[v as usize]))
         .collect()
 }
 
@@ -155,4 +205,40 @@ pub fn point_triangle_distance(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
             norm(sub(p, [a[0] + s * e[0], a[1] + s * e[1], a[2] + s * e[2]]))
         })
         .fold(f64::INFINITY, f64::min)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two triangles on the edge (0, 1) along x, the second turned about that edge by
+    /// `turn` degrees from the first's plane, plus a third triangle away from the edge.
+    fn hinge(turn: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        let t = turn.to_radians();
+        let pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.5, -t.cos(), t.sin()],
+            [1.5, 1.0, 0.0],
+            [2.5, 1.0, 0.0],
+            [2.0, 2.0, 0.0],
+        ];
+        (pos, vec![[0, 1, 2], [1, 0, 3], [4, 5, 6]])
+    }
+
+    #[test]
+    fn creases_are_edges_whose_normals_turn_more_than_the_angle() {
+        // turned by 60°: the normals turn by 60°, no crease
+        let (p, f) = hinge(60.0);
+        assert_eq!(crease_faces(&p, &f, CREASE_ANGLE_DEG), vec![false; 3]);
+        // turned by 120° (a sharp fold): both hinge faces, not the far one
+        let (p, f) = hinge(120.0);
+        assert_eq!(
+            crease_faces(&p, &f, CREASE_ANGLE_DEG),
+            vec![true, true, false]
+        );
+        // the angle is a parameter
+        assert_eq!(crease_faces(&p, &f, 150.0), vec![false; 3]);
+    }
 }

@@ -5,10 +5,13 @@
 //! - [`system`]: the sparse part, reusing the disk map's factorization of `L_II` for every
 //!   λ (Woodbury: only an `m × m` matrix is refactored when λ changes);
 //! - [`boundary`]: the sliding boundary (exact one-vertex minimizations on the circle);
+//! - [`warp`]: the fold-free landmark warp that finishes what Eq. 34 cannot do without
+//!   folding;
 //! - here: the driver, the fold check and the λ back-off.
 
 mod boundary;
 mod system;
+mod warp;
 
 use std::time::Instant;
 
@@ -19,6 +22,8 @@ use serde::Serialize;
 use crate::MorphError;
 use boundary::{polygon_area, BoundaryEnergy};
 use system::LandmarkSystem;
+use warp::warp_landmarks;
+pub use warp::{WarpOptions, WarpReport, WARP_MAX_STEPS, WARP_STEP, WARP_SUPPORT};
 
 /// The landmark weight λ of Eq. 34 by default: `1000`. With `E_D = ½ fᴴ L f` on a unit
 /// disk (`E_D ≈ π`) a landmark's pull is resisted by a stiffness of order
@@ -36,6 +41,13 @@ pub const REGISTER_MAX_SWEEPS: usize = 2000;
 /// The sweeps stop when no boundary vertex moved more than this many radians in a sweep:
 /// `1e-10` (a thousandth of a boundary gap of `1e-7`, far below anything the frames show).
 pub const REGISTER_SWEEP_TOL: f64 = 1e-10;
+
+/// Cap on the boundary sweeps of each solve of the search for the largest λ without a
+/// fold: `200`. Folds appear next to the landmarks and are set by λ, hardly by the last
+/// digits of the sliding boundary, so the search does not wait for the sweeps to
+/// converge (500–2000 at the λ it tries on the shared faces); the λ it finds is then
+/// solved with [`REGISTER_MAX_SWEEPS`] and checked again.
+pub const SEARCH_SWEEPS: usize = 200;
 
 /// When a soft registration folds, λ is divided by this (`4`) and the registration redone.
 pub const LAMBDA_BACKOFF: f64 = 4.0;
@@ -69,6 +81,9 @@ pub struct RegisterOptions {
     pub max_sweeps: usize,
     /// Default: [`REGISTER_SWEEP_TOL`].
     pub sweep_tol: f64,
+    /// The fold-free landmark warp that follows Eq. 34 when it folds. Default:
+    /// [`WarpOptions::DEFAULT`].
+    pub warp: WarpOptions,
 }
 
 impl RegisterOptions {
@@ -77,6 +92,7 @@ impl RegisterOptions {
         mode: LandmarkMode::Soft(DEFAULT_LAMBDA),
         max_sweeps: REGISTER_MAX_SWEEPS,
         sweep_tol: REGISTER_SWEEP_TOL,
+        warp: WarpOptions::DEFAULT,
     };
 }
 
@@ -93,9 +109,12 @@ pub struct RegistrationReport {
     pub mode: &'static str,
     /// λ asked for (`None` in hard mode).
     pub lambda_requested: Option<f64>,
-    /// λ used (lower than asked after a fold back-off; `None` in hard mode).
+    /// λ of the Eq. 34 solve kept: the requested one when it did not fold, else the
+    /// largest λ found without a fold, which the landmark warp then starts from (also in
+    /// hard mode); `None` for a hard solve that did not fold.
     pub lambda_used: Option<f64>,
-    /// `E_R = E_D + λ Σ|h(l_j) − t_j|²` of the result (Eq. 34; `E_D` in hard mode).
+    /// `E_R = E_D + λ Σ|h(l_j) − t_j|²` of the result with the requested λ (Eq. 34;
+    /// `E_D` in hard mode).
     pub energy: f64,
     /// `E_D = ½ hᴴ L h` of the result.
     pub dirichlet_energy: f64,
@@ -110,8 +129,11 @@ pub struct RegistrationReport {
     pub sweeps: usize,
     /// Whether they met the tolerance.
     pub converged: bool,
-    /// Registrations tried (1 + back-offs).
+    /// Eq. 34 solves (1, or 1 + back-offs + bisections).
     pub attempts: usize,
+    /// The landmark warp after the back-off (`None` when Eq. 34 at the requested λ did
+    /// not fold).
+    pub warp: Option<WarpReport>,
     /// Things to know (back-offs, folds left).
     pub notes: Vec<String>,
     /// Milliseconds: forming `Z` and `S₀` (solves with the disk map's factor).
@@ -131,13 +153,27 @@ pub struct Registration {
 }
 
 /// Registers the normalized disk map `g` of `problem`'s mesh so that its landmarks
-/// `vertices` land on (soft: near) `targets` (Eq. 34), boundary sliding on the circle.
-/// A soft registration that folds is redone with λ divided by [`LAMBDA_BACKOFF`] until it
-/// does not (at most [`MAX_LAMBDA_BACKOFFS`] times); the report says so.
+/// `vertices` land on (soft: near) `targets` (Eq. 34), boundary sliding on the circle,
+/// without folding a face:
+///
+/// 1. Eq. 34 at the requested λ (hard: the λ → ∞ limit), its boundary sweeps stopped at
+///    [`SEARCH_SWEEPS`]. If nothing folds, it is solved again with the full sweeps and
+///    is the registration.
+/// 2. Otherwise the landmark positions of step 1 become the goals (hard: the targets
+///    exactly), and Eq. 34 is solved again with λ divided by [`LAMBDA_BACKOFF`] until
+///    nothing folds (at most [`MAX_LAMBDA_BACKOFFS`] times), then [`LAMBDA_BISECTIONS`]
+///    geometric bisections keep the largest λ without a fold: the most the linear
+///    system can do without folding.
+/// 3. A fold-free landmark warp (a composition of small smooth displacements, each
+///    checked for folds, [`WarpOptions`]) moves the landmarks of that map the rest of
+///    the way onto their goals.
+///
+/// The report says which steps ran.
 ///
 /// # Errors
-/// [`MorphError::InvalidOption`] for λ not finite and positive; [`MorphError::Operator`]
-/// if a solve fails; [`MorphError::NonFinite`] for a singular landmark system.
+/// [`MorphError::InvalidOption`] for λ not finite and positive or bad warp options;
+/// [`MorphError::Operator`] if a solve fails (or two landmarks coincide in the disk);
+/// [`MorphError::NonFinite`] for a singular landmark system.
 pub fn register_disk(
     problem: &DiskProblem<'_>,
     g: &[Complex64],
@@ -154,6 +190,16 @@ pub fn register_disk(
             });
         }
     }
+    let w = &options.warp;
+    if !(w.support > 0.0 && w.support.is_finite() && w.step > 0.0 && w.step.is_finite()) {
+        return Err(MorphError::InvalidOption {
+            name: "warp",
+            reason: format!(
+                "support and step must be finite and > 0, got {} and {}",
+                w.support, w.step
+            ),
+        });
+    }
     let op = |source| MorphError::Operator { surface, source };
     let t0 = Instant::now();
     let system = LandmarkSystem::new(problem, vertices).map_err(op)?;
@@ -163,25 +209,23 @@ pub fn register_disk(
     let gb = part.boundary_values(g);
     let sigma = if polygon_area(&gb) >= 0.0 { 1.0 } else { -1.0 };
     let mesh = problem.mesh();
-    let mut lambda = match options.mode {
-        LandmarkMode::Soft(l) => Some(l),
-        LandmarkMode::Hard => None,
-    };
+    let hard = options.mode == LandmarkMode::Hard;
     let mut notes = Vec::new();
     let mut attempts = 0;
-    let mut best: Option<(Vec<Complex64>, usize, boundary::SweepOutcome, Option<f64>)> = None;
-    let attempt = |lambda: Option<f64>| -> Result<_, MorphError> {
+    // one Eq. 34 solve: `lambda` None is the hard limit; `pin` puts boundary landmarks
+    // exactly on the circle at their targets' direction (hard mode)
+    let attempt = |lambda: Option<f64>, pin: bool, start: &[Complex64], sweeps: usize| {
         let inv_mu = lambda.map_or(0.0, |l| 0.5 / l);
         let pen = system.penalized(inv_mu).map_err(op)?;
         let w = system.linear_term(&pen, targets);
         let nb = gb.len();
         let mut pull = vec![Complex64::new(0.0, 0.0); nb];
         let mut pinned = vec![false; nb];
-        let mut hb = gb.clone();
+        let mut hb = start.to_vec();
         for &(j, b) in &system.boundary {
             match lambda {
-                Some(l) => pull[b] -= 2.0 * l * targets[j],
-                None => {
+                Some(l) if !pin => pull[b] -= 2.0 * l * targets[j],
+                _ => {
                     pinned[b] = true;
                     let t = targets[j];
                     hb[b] = if t.norm() > 0.0 { t / t.norm() } else { hb[b] };
@@ -195,7 +239,7 @@ pub fn register_disk(
             pinned: &pinned,
             sigma,
         };
-        let outcome = energy.sweep(&mut hb, options.max_sweeps, options.sweep_tol);
+        let outcome = energy.sweep(&mut hb, sweeps, options.sweep_tol);
         let h = system.full_map(&pen, &hb, targets);
         if let Some(vertex) = h
             .iter()
@@ -204,57 +248,145 @@ pub fn register_disk(
             return Err(MorphError::NonFinite { surface, vertex });
         }
         let folds = folded_faces(mesh.faces(), &h, sigma);
-        Ok((h, folds, outcome))
+        Ok(Attempt {
+            h,
+            hb,
+            folds,
+            outcome,
+        })
     };
-    // phase 1: divide λ by LAMBDA_BACKOFF until nothing folds
-    let mut folded_at: Option<f64> = None;
-    loop {
+    let requested = match options.mode {
+        LandmarkMode::Soft(l) => Some(l),
+        LandmarkMode::Hard => None,
+    };
+    attempts += 1;
+    // searching solves stop their sweeps at SEARCH_SWEEPS; a solve that is kept is
+    // redone from there with the full sweeps
+    let search = options.max_sweeps.min(SEARCH_SWEEPS);
+    let quick = attempt(requested, hard, &gb, search)?;
+    let first = if quick.folds == 0 {
         attempts += 1;
-        let (h, folds, outcome) = attempt(lambda)?;
-        if best.as_ref().is_none_or(|b| folds < b.1) {
-            best = Some((h, folds, outcome, lambda));
-        }
-        match lambda {
-            Some(l) if folds > 0 && attempts <= MAX_LAMBDA_BACKOFFS => {
-                let lower = l / LAMBDA_BACKOFF;
-                notes.push(format!(
-                    "λ = {l:e} folds {folds} face(s): registration redone with λ = {lower:e}"
-                ));
-                folded_at = Some(l);
-                lambda = Some(lower);
-            }
-            _ => break,
-        }
-    }
-    // phase 2: bisect (geometrically) between the last λ that folded and the first that
-    // did not, keeping the largest λ without a fold
-    if let (Some(mut hi), Some((_, 0, _, Some(mut lo)))) = (folded_at, best.as_ref()) {
-        for _ in 0..LAMBDA_BISECTIONS {
-            let mid = (hi * lo).sqrt();
-            attempts += 1;
-            let (h, folds, outcome) = attempt(Some(mid))?;
-            if folds == 0 {
-                lo = mid;
-                best = Some((h, folds, outcome, Some(mid)));
-            } else {
-                hi = mid;
-            }
-        }
-        notes.push(format!(
-            "largest λ without a fold found by {LAMBDA_BISECTIONS} bisections: λ = {lo:e}"
-        ));
-    }
-    let Some((map, folds, outcome, used)) = best else {
-        return Err(MorphError::NonFinite { surface, vertex: 0 });
+        attempt(requested, hard, &quick.hb, options.max_sweeps)?
+    } else {
+        quick
     };
+    let (map, outcome, used, warp) = if first.folds == 0 {
+        let mut h = first.h;
+        if hard {
+            // exactly on target (the solve leaves rounding)
+            for (&v, &t) in vertices.iter().zip(targets) {
+                if part.is_interior[v as usize] {
+                    h[v as usize] = t;
+                }
+            }
+        }
+        (h, first.outcome, requested, None)
+    } else {
+        // the goals: where Eq. 34 at the requested λ puts the landmarks (hard: on
+        // their targets)
+        let goals: Vec<Complex64> = if hard {
+            targets.to_vec()
+        } else {
+            vertices.iter().map(|&v| first.h[v as usize]).collect()
+        };
+        notes.push(format!(
+            "{} folds {} face(s): the landmarks are brought to where it puts them by the \
+             largest λ without a fold and a fold-free landmark warp",
+            match requested {
+                Some(l) => format!("λ = {l:e}"),
+                None => "the hard constraint".to_string(),
+            },
+            first.folds
+        ));
+        // the search for the largest λ without a fold (each solve's sweeps start from
+        // the boundary of the last); phase 1: divide λ by LAMBDA_BACKOFF until nothing
+        // folds
+        let mut lambda = requested.unwrap_or(DEFAULT_LAMBDA);
+        let mut folded_at = lambda;
+        let mut found: Option<(Vec<Complex64>, f64)> = None;
+        let mut start = first.hb.clone();
+        for _ in 0..MAX_LAMBDA_BACKOFFS {
+            let lower = lambda / LAMBDA_BACKOFF;
+            attempts += 1;
+            let a = attempt(Some(lower), hard, &start, search)?;
+            start = a.hb;
+            if a.folds == 0 {
+                found = Some((start.clone(), lower));
+                break;
+            }
+            folded_at = lower;
+            lambda = lower;
+        }
+        // phase 2: bisect (geometrically) between the last λ that folded and the first
+        // that did not
+        if let Some((hb, mut lo)) = found.take() {
+            let (mut hi, mut from) = (folded_at, hb);
+            for _ in 0..LAMBDA_BISECTIONS {
+                let mid = (hi * lo).sqrt();
+                attempts += 1;
+                let a = attempt(Some(mid), hard, &from, search)?;
+                if a.folds == 0 {
+                    lo = mid;
+                    from = a.hb;
+                } else {
+                    hi = mid;
+                }
+            }
+            found = Some((from, lo));
+        }
+        // the base: the full solve at the λ found (lowered again should the converged
+        // boundary fold)
+        let mut base: Option<(Attempt, f64)> = None;
+        if let Some((from, mut lo)) = found {
+            for _ in 0..MAX_LAMBDA_BACKOFFS {
+                attempts += 1;
+                let a = attempt(Some(lo), hard, &from, options.max_sweeps)?;
+                if a.folds == 0 {
+                    base = Some((a, lo));
+                    break;
+                }
+                lo /= LAMBDA_BACKOFF;
+            }
+        }
+        // no λ without a fold: the normalized disk map itself (it has none)
+        let (mut h, outcome, lo) = match base {
+            Some((a, lo)) => (a.h, a.outcome, Some(lo)),
+            None => {
+                notes.push(format!(
+                    "every λ down to {lambda:e} folds: the warp starts from the unregistered disk"
+                ));
+                (g.to_vec(), first.outcome, None)
+            }
+        };
+        if let Some(lo) = lo {
+            notes.push(format!("largest λ without a fold: {lo:e}"));
+        }
+        let active: Vec<bool> = vertices
+            .iter()
+            .map(|&v| part.is_interior[v as usize])
+            .collect();
+        let report = warp_landmarks(
+            &mut h,
+            mesh.faces(),
+            vertices,
+            &goals,
+            &active,
+            sigma,
+            &options.warp,
+        )
+        .map_err(op)?;
+        if !report.reached {
+            notes.push(format!(
+                "the landmark warp stopped at its cap of {} steps, short of the goals",
+                options.warp.max_steps
+            ));
+        }
+        (h, outcome, lo, Some(report))
+    };
+    let folds = folded_faces(mesh.faces(), &map, sigma);
     if folds > 0 {
         notes.push(format!(
-            "{folds} face(s) stay folded in the registered disk ({})",
-            if used.is_some() {
-                "after every λ back-off"
-            } else {
-                "hard landmarks: try the soft mode"
-            }
+            "{folds} face(s) stay folded in the registered disk"
         ));
     }
     if !outcome.converged {
@@ -269,14 +401,11 @@ pub fn register_disk(
         .map(|(&v, &t)| (map[v as usize] - t).norm())
         .collect();
     let dirichlet = problem.dirichlet_energy(&map);
-    let penalty = used.map_or(0.0, |l| l * errors.iter().map(|e| e * e).sum::<f64>());
+    let penalty = requested.map_or(0.0, |l| l * errors.iter().map(|e| e * e).sum::<f64>());
     Ok(Registration {
         report: RegistrationReport {
-            mode: if used.is_some() { "soft" } else { "hard" },
-            lambda_requested: match options.mode {
-                LandmarkMode::Soft(l) => Some(l),
-                LandmarkMode::Hard => None,
-            },
+            mode: if hard { "hard" } else { "soft" },
+            lambda_requested: requested,
             lambda_used: used,
             energy: dirichlet + penalty,
             dirichlet_energy: dirichlet,
@@ -286,12 +415,21 @@ pub fn register_disk(
             sweeps: outcome.sweeps,
             converged: outcome.converged,
             attempts,
+            warp,
             notes,
             setup_ms,
             solve_ms: ms(t1),
         },
         map,
     })
+}
+
+/// One solve of Eq. 34.
+struct Attempt {
+    h: Vec<Complex64>,
+    hb: Vec<Complex64>,
+    folds: usize,
+    outcome: boundary::SweepOutcome,
 }
 
 /// Faces whose image under `map` has signed area of the wrong sign (against `sigma`, the
