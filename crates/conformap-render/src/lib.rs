@@ -80,7 +80,7 @@ pub use param::{MapCoords, UvValues, SPHERE_RADIUS_TOL};
 pub use textures::{TONE_DARK, TONE_LIGHT};
 pub use view::histogram::{angle_histogram, histogram_svg, AngleHistogram};
 pub use view::map::{EDGE_FADE_FULL_PX, EDGE_FADE_START_PX, EDGE_WIDTH_PX};
-pub use view::surface::{AMBIENT, BACK_SIDE, DIFFUSE};
+pub use view::surface::{AMBIENT, BACK_SIDE, DIFFUSE, SMALL_FACE_PX};
 
 use conformap_mesh::TriMesh;
 
