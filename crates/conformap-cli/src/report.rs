@@ -198,7 +198,8 @@ pub struct MemoryReport {
     pub limit_bytes: Option<u64>,
     /// Where the limit came from (`--max-memory`, `MemAvailable`, `cgroup memory.max`).
     pub limit_source: Option<&'static str>,
-    /// The measured peak resident memory of the process (Linux `VmHWM`).
+    /// The measured peak resident memory of the process (Linux `VmHWM`); in a `batch` with
+    /// one job at a time, of this run alone (the mark is reset before each input).
     pub peak_rss_bytes: Option<u64>,
 }
 

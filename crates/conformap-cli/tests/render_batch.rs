@@ -330,6 +330,8 @@ fn batch_runs_fixtures_reports_lines_and_matches_single_runs() {
                 .expect("mem")
                 > 0
         );
+        // two jobs share the process: their peak is the process's
+        assert_eq!(line["memory"]["peak_rss_scope"], "process", "{line}");
     }
     let broken = &lines[names.len()];
     assert_eq!(broken["status"], "failed");
@@ -409,6 +411,22 @@ fn batch_runs_fixtures_reports_lines_and_matches_single_runs() {
         s(&fixture("spot.obj")),
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // one job at a time: each input's peak is its own where the high-water mark can be
+    // reset (Linux), and never above the batch's
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    let lines: Vec<serde_json::Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
+        .collect();
+    let resettable = std::fs::write("/proc/self/clear_refs", "5").is_ok();
+    let scope = if resettable { "job" } else { "process" };
+    assert_eq!(lines[0]["memory"]["peak_rss_scope"], scope, "{}", lines[0]);
+    if let (Some(job), Some(all)) = (
+        lines[0]["memory"]["peak_rss_bytes"].as_u64(),
+        lines[1]["summary"]["peak_rss_bytes"].as_u64(),
+    ) {
+        assert!(job > 0 && job <= all, "{job} vs {all}");
+    }
     let o = conformap(&[
         "batch",
         "--command",

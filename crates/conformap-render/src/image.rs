@@ -5,6 +5,14 @@ use std::path::Path;
 
 use crate::error::RenderError;
 
+/// The PNG compression of [`Image::write_png`]: `png::Compression::Fast` (the `fdeflate`
+/// encoder, adaptive row filters). Measured on 1024² pictures: 6–18 ms instead of
+/// 160–310 ms for `Balanced` (zlib level 6) on the 1M-face surface and map views, for
+/// files 1.1–1.6× as large (surface 698 KiB instead of 447; map 716 KiB instead of 641;
+/// hand, spot: 1.15–1.5×). Encoding is serial, so at `Balanced` it cost as much as the
+/// whole parallel render; a smaller file is one `oxipng` away.
+pub(crate) const PNG_COMPRESSION: png::Compression = png::Compression::Fast;
+
 /// An 8-bit sRGB picture, rows top to bottom, 3 bytes per pixel.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Image {
@@ -83,7 +91,9 @@ impl Image {
         self.rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]])
     }
 
-    /// Encodes the picture as PNG into `w` (8-bit RGB, sRGB, balanced compression).
+    /// Encodes the picture as PNG into `w` (8-bit RGB, sRGB, fast compression: the
+    /// `fdeflate` encoder with adaptive row filters, ten times faster than zlib level 6 for
+    /// files 1.1–1.6× as large).
     ///
     /// # Errors
     /// [`RenderError::Png`] when encoding or writing fails.
@@ -92,7 +102,7 @@ impl Image {
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        encoder.set_compression(png::Compression::Balanced);
+        encoder.set_compression(PNG_COMPRESSION);
         let mut writer = encoder.write_header()?;
         writer.write_image_data(&self.rgb)?;
         writer.finish()?;

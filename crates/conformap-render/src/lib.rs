@@ -20,8 +20,9 @@
 //! - [`Camera`]: the orthographic camera (principal-axis default, azimuth, elevation).
 //! - [`RenderError`]: the one error type.
 //!
-//! Internals: `raster` (a z-buffer of face ids at `supersample²` samples per pixel, in
-//! parallel over bands of rows; shading per sample, averaged per pixel), `textures`,
+//! Internals: `raster` (bands of sample rows in parallel, each drawn into a z-buffer of
+//! face ids at `supersample²` samples per pixel and resolved while in the cache: a pixel's
+//! samples grouped by face, each group shaded in one call), `textures`,
 //! `colormap`, `font` (a 5×7 bitmap font for the few labels), `faces` (per-face values),
 //! `view` (the three pictures and the colour bar).
 //!
@@ -80,7 +81,7 @@ pub use param::{MapCoords, UvValues, SPHERE_RADIUS_TOL};
 pub use textures::{TONE_DARK, TONE_LIGHT};
 pub use view::histogram::{angle_histogram, histogram_svg, AngleHistogram};
 pub use view::map::{EDGE_FADE_FULL_PX, EDGE_FADE_START_PX, EDGE_WIDTH_PX};
-pub use view::surface::{AMBIENT, BACK_SIDE, DIFFUSE};
+pub use view::surface::{AMBIENT, BACK_SIDE, DIFFUSE, SMALL_FACE_PX};
 
 use conformap_mesh::TriMesh;
 

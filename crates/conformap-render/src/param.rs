@@ -2,6 +2,7 @@
 
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 use crate::error::RenderError;
 
@@ -143,28 +144,35 @@ impl MapCoords<'_> {
         }
     }
 
-    /// The image of corner `k` of face `f`: `[u, v, 0]` for planar maps, the unit vector
-    /// for sphere maps.
-    #[inline]
-    pub(crate) fn corner(&self, mesh: &TriMesh, f: usize, k: usize) -> [f64; 3] {
+    /// The image of every vertex (`[u, v, 0]` or the unit vector), when each vertex has
+    /// one; `None` for a map given per corner (a seamed map, where a vertex has several).
+    pub(crate) fn vertex_points(&self) -> Option<Vec<[f64; 3]>> {
         match self {
-            Self::Planar(uv) => {
-                let z = uv.corner(mesh, f, k);
-                [z.re, z.im, 0.0]
+            Self::Planar(UvValues::PerVertex(v)) => {
+                Some(v.par_iter().map(|z| [z.re, z.im, 0.0]).collect())
             }
-            Self::Equirectangular(uv) => from_equirectangular(uv.corner(mesh, f, k)),
-            Self::Sphere(points) => points[mesh.faces()[f][k] as usize],
+            Self::Equirectangular(UvValues::PerVertex(v)) => {
+                Some(v.par_iter().map(|&z| from_equirectangular(z)).collect())
+            }
+            Self::Sphere(points) => Some(points.to_vec()),
+            Self::Planar(UvValues::PerCorner(_))
+            | Self::Equirectangular(UvValues::PerCorner(_)) => None,
         }
     }
 
-    /// The three corner images of face `f`.
+    /// The three corner images of face `f`: `[u, v, 0]` for planar maps, unit vectors for
+    /// sphere maps (one dispatch on the kind of map).
     #[inline]
     pub(crate) fn face(&self, mesh: &TriMesh, f: usize) -> [[f64; 3]; 3] {
-        [
-            self.corner(mesh, f, 0),
-            self.corner(mesh, f, 1),
-            self.corner(mesh, f, 2),
-        ]
+        let planar = |z: Complex64| [z.re, z.im, 0.0];
+        match self {
+            Self::Planar(UvValues::PerVertex(v)) => mesh.faces()[f].map(|i| planar(v[i as usize])),
+            Self::Planar(UvValues::PerCorner(c)) => c[f].map(planar),
+            Self::Equirectangular(uv) => {
+                [0, 1, 2].map(|k| from_equirectangular(uv.corner(mesh, f, k)))
+            }
+            Self::Sphere(points) => mesh.faces()[f].map(|i| points[i as usize]),
+        }
     }
 }
 

@@ -19,20 +19,32 @@ const GRID_HALF_WIDTH: f64 = 0.06;
 pub(crate) fn texture(color: ColorBy, s: f64, t: f64) -> [f32; 3] {
     let dark = match color {
         ColorBy::Circles => {
-            let (fs, ft) = (s - s.floor() - 0.5, t - t.floor() - 0.5);
+            let (fs, ft) = (s - floor_i64(s) as f64 - 0.5, t - floor_i64(t) as f64 - 0.5);
             fs * fs + ft * ft < CIRCLE_RADIUS * CIRCLE_RADIUS
         }
         ColorBy::Grid => {
-            let (fs, ft) = (s - s.round(), t - t.round());
+            // s − round(s), ties (irrelevant here) rounded up
+            let (fs, ft) = (s - floor_i64(s + 0.5) as f64, t - floor_i64(t + 0.5) as f64);
             fs.abs() < GRID_HALF_WIDTH || ft.abs() < GRID_HALF_WIDTH
         }
-        _ => (s.floor() as i64 + t.floor() as i64).rem_euclid(2) == 1,
+        // the parity of ⌊s⌋ + ⌊t⌋ (two's complement: also for negative cells)
+        _ => (floor_i64(s) ^ floor_i64(t)) & 1 == 1,
     };
     if dark {
         TONE_DARK
     } else {
         TONE_LIGHT
     }
+}
+
+/// `⌊x⌋` as an integer, without the `libm` call that `f64::floor` is on the x86-64
+/// baseline (no SSE4.1), which made a tenth of a textured picture's time: exact for
+/// `|x| < 2⁶³`, saturating beyond, 0 for NaN.
+#[inline]
+pub(crate) fn floor_i64(x: f64) -> i64 {
+    // branch-free: a truncated negative non-integer is one too high
+    let i = x as i64;
+    i - ((i as f64 > x) & (i != i64::MIN)) as i64
 }
 
 /// Texture coordinates (in cells) of a point of the unit sphere: Mercator coordinates
@@ -61,6 +73,27 @@ mod tests {
         let c = texture(ColorBy::Checker, 1.5, -0.5);
         assert_ne!(a, b);
         assert_eq!(a, c);
+    }
+
+    #[test]
+    fn floor_i64_is_floor() {
+        for x in [
+            -2.5,
+            -2.0,
+            -1e-300,
+            -0.0,
+            0.0,
+            0.3,
+            1.0,
+            7.999,
+            1e15 + 0.5,
+            -1e15 - 0.5,
+        ] {
+            assert_eq!(floor_i64(x), x.floor() as i64, "{x}");
+        }
+        assert_eq!(floor_i64(f64::NAN), 0);
+        assert_eq!(floor_i64(-1e300), i64::MIN);
+        assert_eq!(floor_i64(1e300), i64::MAX);
     }
 
     #[test]

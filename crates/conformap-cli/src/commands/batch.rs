@@ -8,6 +8,14 @@
 //! go to the caller's sink and to `--report`. `--jobs N` runs N inputs at once, each on one
 //! thread, as far as their memory estimates fit the memory available at the start
 //! ([`crate::pipeline::context::MemoryBudget`]).
+//!
+//! Peak memory: with `--jobs 1` every input's `memory.peak_rss_bytes` (in its line and in
+//! `DIR/<stem>.json`) is that run's own peak: the process's high-water mark is reset before
+//! each input (Linux `/proc/self/clear_refs`), and the line's `memory.peak_rss_scope` says
+//! `"job"`.
+//! With several jobs at once (or where the reset is refused) runs share the process, so the
+//! value is the process's peak so far and the scope says `"process"`. The summary's
+//! `peak_rss_bytes` is the process's peak over the whole batch.
 
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -240,6 +248,7 @@ pub fn run_streaming(
         }
     };
     let next = AtomicUsize::new(0);
+    let mut job_peak = 0u64;
     let (tx, rx) = mpsc::channel::<(usize, Value)>();
     std::thread::scope(|s| {
         for _ in 0..workers {
@@ -257,8 +266,8 @@ pub fn run_streaming(
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(job) = jobs.get(k) else { break };
                     let line = context.scope(|| match &pool {
-                        Some(p) => p.install(|| run_job(job, args.skip_existing)),
-                        None => run_job(job, args.skip_existing),
+                        Some(p) => p.install(|| run_job(job, args.skip_existing, false)),
+                        None => run_job(job, args.skip_existing, workers == 1),
                     });
                     if tx.send((k, line)).is_err() {
                         break;
@@ -270,6 +279,9 @@ pub fn run_streaming(
         let mut pending = BTreeMap::new();
         let mut due = 0;
         for (k, line) in rx {
+            if let Some(p) = line["memory"]["peak_rss_bytes"].as_u64() {
+                job_peak = job_peak.max(p);
+            }
             pending.insert(k, line);
             while let Some(line) = pending.remove(&due) {
                 match line["status"].as_str() {
@@ -285,7 +297,9 @@ pub fn run_streaming(
         }
     });
     let exit_code = if failed > 0 { 4 } else { 0 };
-    let peak = conformap_operators::peak_rss_bytes();
+    // the process's high-water mark, reset before every input when jobs = 1: the largest
+    // of the inputs' peaks and what came after the last reset
+    let peak = conformap_operators::peak_rss_bytes().map(|p| p.max(job_peak));
     emit(&json!({ "summary": {
         "command": args.command.name(),
         "inputs": jobs.len(),
@@ -310,8 +324,17 @@ pub fn run_streaming(
     })
 }
 
-/// Runs one input (or skips it) and describes the result as its JSON line.
-fn run_job(job: &Job, skip_existing: bool) -> Value {
+/// Resets the process's peak resident memory (Linux `VmHWM`) to its current resident
+/// memory, by writing `5` to `/proc/self/clear_refs`; `false` where that is refused or
+/// unsupported.
+fn reset_peak_rss() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// Runs one input (or skips it) and describes the result as its JSON line. `own_peak`:
+/// this run is alone in the process, so its peak memory can be measured on its own (the
+/// high-water mark is reset first).
+fn run_job(job: &Job, skip_existing: bool, own_peak: bool) -> Value {
     let input = job.input.mesh.display().to_string();
     let outputs: Vec<String> = job
         .outputs
@@ -321,6 +344,11 @@ fn run_job(job: &Job, skip_existing: bool) -> Value {
     if skip_existing && job.outputs.iter().all(|p| p.exists()) {
         return json!({ "input": input, "status": "skipped", "outputs": outputs });
     }
+    let scope = if own_peak && reset_peak_rss() {
+        "job"
+    } else {
+        "process"
+    };
     let t = Instant::now();
     let result = match as_map(&job.command) {
         Some(cmd) => std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run_map(cmd)))
@@ -333,7 +361,7 @@ fn run_job(job: &Job, skip_existing: bool) -> Value {
             }),
         None => Err(Failure::Usage("not a map command".to_string())),
     };
-    match result {
+    let mut line = match result {
         Ok(Outcome {
             report: Some(r), ..
         }) => json!({
@@ -357,7 +385,11 @@ fn run_job(job: &Job, skip_existing: bool) -> Value {
             "hint": f.hint(),
             "time_ms": ms_since(t),
         }),
+    };
+    if let Some(memory) = line.get_mut("memory").and_then(Value::as_object_mut) {
+        memory.insert("peak_rss_scope".to_string(), json!(scope));
     }
+    line
 }
 
 /// The name of a failure's exit class.

@@ -178,7 +178,9 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
         staged.flat(path, &solved.flat.0, faces)?;
     }
     if let Some(prefix) = &output.png {
+        context::stage(format!("{}: drawing the pictures", mesh_path.display()));
         pictures::stage_pictures(&mut staged, prefix, mesh, &solved, cmd.picture_domain())?;
+        context::stage(format!("{}: writing", mesh_path.display()));
     }
     if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {
         staged.text(path, &input::vertex_map_text(log))?;

@@ -5,14 +5,14 @@
 use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
-use super::{clamp_barycentric, colorbar, interpolate, TexMap};
+use super::{clamp_barycentric, colorbar, interpolate, FaceTex, TexMap};
 use crate::camera::{dot, normalize, Camera};
 use crate::error::RenderError;
 use crate::faces::{distortions, face_field};
 use crate::image::Image;
 use crate::options::RenderOptions;
 use crate::param::{Domain, MapCoords};
-use crate::raster::{barycentric, rasterize, resolve};
+use crate::raster::{self, centroid, Barycentric};
 use crate::textures::texture;
 use crate::view::surface::{AMBIENT, DIFFUSE};
 
@@ -29,6 +29,15 @@ const EDGE_COLOR: [f32; 3] = [0.12, 0.12, 0.12];
 /// Opacity of a fully drawn edge: 0.75.
 const EDGE_OPACITY: f32 = 0.75;
 
+/// A face prepared for shading (see `raster::draw`).
+#[derive(Debug, Clone, Copy, Default)]
+struct MapFace {
+    /// The face.
+    face: u32,
+    /// Its barycentric coordinates on the screen (`None`: zero screen area, or not needed).
+    frame: Option<Barycentric>,
+}
+
 /// Draws the map view.
 pub(crate) fn render_map(
     mesh: &TriMesh,
@@ -44,11 +53,19 @@ pub(crate) fn render_map(
         0.0
     };
     let n_faces = mesh.num_faces();
-    // every corner is a vertex of the drawn mesh (seamed maps have several per vertex)
-    let corners: Vec<[f64; 3]> = (0..n_faces)
-        .into_par_iter()
-        .flat_map_iter(|f| coords.face(mesh, f))
-        .collect();
+    let faces = mesh.faces();
+    // the drawn mesh: the map's image of every vertex, or of every corner for a seamed map
+    // (where a vertex has several images)
+    let (points, per_corner) = match coords.vertex_points() {
+        Some(points) => (points, false),
+        None => (
+            (0..n_faces)
+                .into_par_iter()
+                .flat_map_iter(|f| coords.face(mesh, f))
+                .collect::<Vec<_>>(),
+            true,
+        ),
+    };
     let sphere = coords.domain() == Domain::Sphere;
     let camera = if sphere {
         Camera::looking(
@@ -61,15 +78,19 @@ pub(crate) fn render_map(
         Camera::looking([0.0, 0.0, -1.0], [0.0, 1.0, 0.0], 0.0, 0.0)
     };
     let camera = camera
-        .fit(corners.iter(), [0.0, 0.0, side as f64 - bar, side as f64])
+        .fit(points.iter(), [0.0, 0.0, side as f64 - bar, side as f64])
         .ok_or(RenderError::Collapsed)?;
-    let screen: Vec<[f64; 3]> = corners.par_iter().map(|&p| camera.project(p)).collect();
+    let screen: Vec<[f64; 3]> = points.par_iter().map(|&p| camera.project(p)).collect();
     let tri_index = |t: usize| {
-        let b = 3 * t as u32;
-        [b, b + 1, b + 2]
+        if per_corner {
+            let b = 3 * t as u32;
+            [b, b + 1, b + 2]
+        } else {
+            faces[t]
+        }
     };
-    let vis = rasterize(side, side, &screen, n_faces, tri_index);
-    let tri = |f: usize| [screen[3 * f], screen[3 * f + 1], screen[3 * f + 2]];
+    let tri = |f: usize| tri_index(f).map(|i| screen[i as usize]);
+    let corners_of = |f: usize| tri_index(f).map(|i| points[i as usize]);
 
     // altitudes in samples, and how strongly each face's edges show
     let half = 0.5 * EDGE_WIDTH_PX * ss as f64;
@@ -83,7 +104,9 @@ pub(crate) fn render_map(
             let mut h = [0.0f32; 3];
             for k in 0..3 {
                 let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
-                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                // screen lengths are at most 2¹⁷ samples: no overflow without `hypot`
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let len = (dx * dx + dy * dy).sqrt();
                 h[k] = if len > 0.0 { (area2 / len) as f32 } else { 0.0 };
             }
             let h_min = h[0].min(h[1]).min(h[2]) as f64 / ss as f64;
@@ -115,30 +138,68 @@ pub(crate) fn render_map(
         }
     };
 
+    let bary = |frame: &Option<Barycentric>, p: [f64; 2]| {
+        frame.map_or([1.0 / 3.0; 3], |b| clamp_barycentric(b.at(p[0], p[1])))
+    };
+    // a face's barycentric frame (not needed for a flat colour without edges)
+    let prepare = |f: u32| -> MapFace {
+        let fi = f as usize;
+        let needed = !quantity || sphere || edges[fi].1 > 0.0;
+        MapFace {
+            face: f,
+            frame: needed.then(|| Barycentric::new(tri(fi))).flatten(),
+        }
+    };
+    // the sphere's light, once per face and pixel (at the centre of the face's samples)
+    let light_at = |face: &MapFace, points: &[[f64; 2]]| {
+        if sphere {
+            let b = bary(&face.frame, centroid(points));
+            shading(interpolate(b, corners_of(face.face as usize)))
+        } else {
+            1.0
+        }
+    };
+    let size = options.size as usize;
+    let (bg, n) = (options.background, n_faces);
+
     let image = if quantity {
         let field = face_field(&distortions(mesh, coords), options.color);
         let colors = field.colors();
-        let mut image = resolve(&vis, ss, options.background, |f, x, y| {
-            let f = f as usize;
-            let b = clamp_barycentric(barycentric(tri(f), x, y).unwrap_or([1.0 / 3.0; 3]));
-            let i = shading(interpolate(
-                b,
-                [corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]],
-            ));
-            with_edge(f, b, colors[f].map(|c| c * i))
-        });
+        let shade = |face: &MapFace, points: &[[f64; 2]]| {
+            let f = face.face as usize;
+            let c = colors[f].map(|c| c * light_at(face, points));
+            if edges[f].1 <= 0.0 {
+                return c.map(|c| c * points.len() as f32);
+            }
+            let mut acc = [0.0f32; 3];
+            for &p in points {
+                let e = with_edge(f, bary(&face.frame, p), c);
+                acc = [acc[0] + e[0], acc[1] + e[1], acc[2] + e[2]];
+            }
+            acc
+        };
+        let mut image = raster::draw(size, ss, &screen, n, tri_index, bg, prepare, shade);
         colorbar::draw(&mut image, &field);
         image
     } else {
         let tex = TexMap::new(mesh, coords, options.texture_cells);
-        resolve(&vis, ss, options.background, |f, x, y| {
-            let f = f as usize;
-            let b = clamp_barycentric(barycentric(tri(f), x, y).unwrap_or([1.0 / 3.0; 3]));
-            let p = interpolate(b, [corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]]);
-            let (s, t) = tex.at(p);
-            let i = shading(p);
-            with_edge(f, b, texture(options.color, s, t).map(|c| c * i))
-        })
+        let prepare = |f: u32| {
+            let face = prepare(f);
+            (face, tex.face(corners_of(f as usize)))
+        };
+        let shade = |(face, face_tex): &(MapFace, FaceTex), points: &[[f64; 2]]| {
+            let f = face.face as usize;
+            let i = light_at(face, points);
+            let mut acc = [0.0f32; 3];
+            for &p in points {
+                let b = bary(&face.frame, p);
+                let (s, t) = face_tex.at(b);
+                let e = with_edge(f, b, texture(options.color, s, t).map(|c| c * i));
+                acc = [acc[0] + e[0], acc[1] + e[1], acc[2] + e[2]];
+            }
+            acc
+        };
+        raster::draw(size, ss, &screen, n, tri_index, bg, prepare, shade)
     };
     Ok(image)
 }

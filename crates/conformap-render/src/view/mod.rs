@@ -91,6 +91,49 @@ impl TexMap {
     }
 }
 
+impl TexMap {
+    /// The texture coordinates over the face with the map corners `corners`, as a function
+    /// of the barycentric coordinates: for planar maps (an affine texture mapping) the
+    /// corners' texture coordinates are computed once and interpolated; sphere maps
+    /// interpolate the sphere point and project it at every sample.
+    #[inline]
+    pub(crate) fn face(&self, corners: [[f64; 3]; 3]) -> FaceTex {
+        match self {
+            Self::Plane { .. } => FaceTex::Affine(corners.map(|c| self.at(c))),
+            Self::Sphere { .. } => FaceTex::Projected(*self, corners),
+        }
+    }
+}
+
+/// [`TexMap::face`]: the texture coordinates over one face.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum FaceTex {
+    /// Affine in the barycentric coordinates: the corners' texture coordinates.
+    Affine([(f64, f64); 3]),
+    /// Through the map point: the mapping and the corners' map points.
+    Projected(TexMap, [[f64; 3]; 3]),
+}
+
+impl Default for FaceTex {
+    fn default() -> Self {
+        Self::Affine([(0.0, 0.0); 3])
+    }
+}
+
+impl FaceTex {
+    /// The texture coordinates at the barycentric coordinates `b`.
+    #[inline]
+    pub(crate) fn at(&self, b: [f64; 3]) -> (f64, f64) {
+        match self {
+            Self::Affine(st) => (
+                b[0] * st[0].0 + b[1] * st[1].0 + b[2] * st[2].0,
+                b[0] * st[0].1 + b[1] * st[1].1 + b[2] * st[2].1,
+            ),
+            Self::Projected(tex, corners) => tex.at(interpolate(b, *corners)),
+        }
+    }
+}
+
 /// `Σ b_k x_k` for three points.
 #[inline]
 pub(crate) fn interpolate(b: [f64; 3], x: [[f64; 3]; 3]) -> [f64; 3] {
@@ -105,6 +148,9 @@ pub(crate) fn interpolate(b: [f64; 3], x: [[f64; 3]; 3]) -> [f64; 3] {
 /// rounding error outside), renormalized.
 #[inline]
 pub(crate) fn clamp_barycentric(b: [f64; 3]) -> [f64; 3] {
+    if b[0] >= 0.0 && b[1] >= 0.0 && b[2] >= 0.0 {
+        return b;
+    }
     let c = b.map(|x| x.max(0.0));
     let s = c[0] + c[1] + c[2];
     if s > 0.0 {
