@@ -43,7 +43,7 @@ pub fn uniform_sphere(mesh: &TriMesh, points: &[[f64; 3]]) -> SphereMobius {
         &MobiusObjective::Uniform,
         &MobiusOptions::DEFAULT,
     )
-    .unwrap()
+    .expect("sphere Möbius optimization")
 }
 
 /// A disk map moved by its most uniform automorphism of the disk (default options).
@@ -54,7 +54,7 @@ pub fn uniform_disk(mesh: &TriMesh, map: &[Complex64]) -> DiskMobius {
         &MobiusObjective::Uniform,
         &MobiusOptions::DEFAULT,
     )
-    .unwrap()
+    .expect("disk Möbius optimization")
 }
 
 /// Asserts that the optimization lowered the uniformity energy (`what` names the case).
