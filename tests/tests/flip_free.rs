@@ -14,7 +14,7 @@ use conformap_disk::{
 };
 use conformap_mesh::TriMesh;
 use conformap_metrics::{planar_map_metrics, MapMetrics, MetricsOptions};
-use conformap_testkit::{fixture_path, read_plain_obj, shared_mesh_or_skip};
+use conformap_testkit::{fixture_mesh as fixture, read_shared_mesh_or_skip, CLASS_A};
 use num_complex::Complex64;
 
 /// How much a map computed with the intrinsic Delaunay Laplacian may exceed the plain
@@ -110,10 +110,6 @@ fn run_ccem(mesh: &TriMesh) -> Row {
     }
 }
 
-fn fixture(name: &str) -> TriMesh {
-    read_plain_obj(&fixture_path(name)).expect("fixture")
-}
-
 fn excess(ec: f64, plain: f64) -> f64 {
     (ec - plain) / plain
 }
@@ -148,19 +144,6 @@ fn fixtures_are_flip_free_and_intrinsic_costs_at_most_two_percent() {
     }
 }
 
-/// Class a of `../shared/meshes/`, as in `shared/meshes/README.md`.
-const CLASS_A: &[&str] = &[
-    "woody.obj",
-    "alligator.obj",
-    "spothead.obj",
-    "maze.obj",
-    "camelhead.obj",
-    "human_face.obj",
-    "chinese_lion.obj",
-    "hand.obj",
-    "igea_open.obj",
-];
-
 fn fmt_guarded(g: Option<(usize, f64)>) -> String {
     match g {
         Some((f, ec)) => format!("{f} | {ec:.5e}"),
@@ -177,10 +160,9 @@ fn class_a_flip_table() {
          plain / intrinsic (deg) | intrinsic flips (ms)"
     );
     for name in CLASS_A {
-        let Some(path) = shared_mesh_or_skip(name, "class_a_flip_table") else {
+        let Some(mesh) = read_shared_mesh_or_skip(name, "class_a_flip_table") else {
             continue;
         };
-        let mesh = read_plain_obj(&path).expect("mesh");
         let t = Instant::now();
         let (_, stats) = conformap_operators::intrinsic_delaunay_laplacian(&mesh).expect("flips");
         let flip_ms = t.elapsed().as_secs_f64() * 1e3;
@@ -209,7 +191,7 @@ fn class_a_flip_table() {
                     assert!((ec - row.plain_ec).abs() <= 1e-12 * ec, "{name} {method}");
                 }
             } else {
-                assert_eq!(*name, "maze.obj", "only maze may be refused");
+                assert_eq!(name, "maze.obj", "only maze may be refused");
             }
         }
     }

@@ -2,24 +2,18 @@
 
 mod support;
 
-use support::{conformap, fixture, json, s, stderr, tmpdir};
+use support::{conformap, fixture, map_report, metrics_json, s, stderr, tmpdir};
 
 #[test]
 fn disk_maps_spothead_and_metrics_agree_with_the_report() {
     let d = tmpdir("spothead");
     let (out, flat, rep) = (d.join("uv.obj"), d.join("flat.obj"), d.join("r.json"));
-    let o = conformap(&[
-        "disk",
-        s(&fixture("spothead.obj")),
-        "-o",
-        s(&out),
-        "--flat",
-        s(&flat),
-        "--report",
-        s(&rep),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r = json(&rep);
+    let r = map_report(
+        &["disk", s(&fixture("spothead.obj"))],
+        &out,
+        Some(&flat),
+        &rep,
+    );
     assert_eq!(r["command"], "disk");
     assert_eq!(r["method"], "ccem-qn");
     assert_eq!(r["input"]["vertices"], 4537);
@@ -56,9 +50,7 @@ fn disk_maps_spothead_and_metrics_agree_with_the_report() {
     assert!(analyse > 0.0 && analyse <= t["factor"].as_f64().unwrap());
     // judge the written files: both agree with the report to 1e-9 relative
     for param in [&out, &flat] {
-        let o = conformap(&["metrics", s(&fixture("spothead.obj")), s(param), "--json"]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let v = metrics_json(&fixture("spothead.obj"), param);
         let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
         assert!(
             (e - ec).abs() <= 1e-9 * ec,
@@ -74,18 +66,12 @@ fn methods_rank_as_expected_on_woody() {
     let (out, rep) = (d.join("h.obj"), d.join("h.json"));
     let mut ec = std::collections::BTreeMap::new();
     for method in ["harmonic", "cem", "ccem", "ccem-qn"] {
-        let o = conformap(&[
-            "disk",
-            s(&fixture("woody.obj")),
-            "-o",
-            s(&out),
-            "--method",
-            method,
-            "--report",
-            s(&rep),
-        ]);
-        assert!(o.status.success(), "{method}: {}", stderr(&o));
-        let r = json(&rep);
+        let r = map_report(
+            &["disk", s(&fixture("woody.obj")), "--method", method],
+            &out,
+            None,
+            &rep,
+        );
         assert_eq!(r["method"], method);
         assert_eq!(r["metrics"]["flipped_faces"], 0, "{method}");
         ec.insert(method, r["metrics"]["conformal_energy"].as_f64().unwrap());
@@ -118,17 +104,8 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
     assert!(!out.exists());
     // several boundary loops are no longer refused: the disk with circular holes
     let rep = d.join("h.json");
-    let o = conformap(&[
-        "disk",
-        s(&fixture("halftunnel.obj")),
-        "-o",
-        s(&out),
-        "--report",
-        s(&rep),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let r = map_report(&["disk", s(&fixture("halftunnel.obj"))], &out, None, &rep);
     assert!(out.exists());
-    let r = json(&rep);
     assert_eq!(r["method"], "koebe");
     assert!(r["metrics"]["circle_residual_max"].as_f64().unwrap() < 1e-6);
 }
@@ -137,18 +114,8 @@ fn wrong_topology_is_bad_input_and_writes_nothing() {
 fn several_loops_map_onto_a_disk_with_circular_holes() {
     let d = tmpdir("holes");
     let (out, flat, rep) = (d.join("uv.obj"), d.join("flat.obj"), d.join("r.json"));
-    let o = conformap(&[
-        "disk",
-        s(&fixture("halftunnel.obj")),
-        "-o",
-        s(&out),
-        "--flat",
-        s(&flat),
-        "--report",
-        s(&rep),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r = json(&rep);
+    let halftunnel = fixture("halftunnel.obj");
+    let r = map_report(&["disk", s(&halftunnel)], &out, Some(&flat), &rep);
     assert_eq!(r["input"]["boundaries"], 3);
     let solver = &r["solver"];
     assert_eq!(solver["converged"], true);
@@ -174,32 +141,13 @@ fn several_loops_map_onto_a_disk_with_circular_holes() {
     assert!(m["conformal_energy"].as_f64().unwrap() > 0.0);
     assert!(m["angle_distortion_deg"]["mean"].as_f64().unwrap() > 0.0);
     // the metrics command agrees on the flat mesh (the outer loop given explicitly)
-    let o = conformap(&["metrics", s(&fixture("halftunnel.obj")), s(&flat), "--json"]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    metrics_json(&halftunnel, &flat);
     // --outer picks another loop; a loop that does not exist is a usage error
     let rep2 = d.join("r2.json");
-    let o = conformap(&[
-        "disk",
-        s(&fixture("halftunnel.obj")),
-        "-o",
-        s(&out),
-        "--outer",
-        "2",
-        "--report",
-        s(&rep2),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r2 = json(&rep2);
+    let r2 = map_report(&["disk", s(&halftunnel), "--outer", "2"], &out, None, &rep2);
     assert_eq!(r2["circle_domain"]["outer_loop"], 2);
     assert_eq!(r2["circle_domain"]["circles"][2]["outer"], true);
-    let o = conformap(&[
-        "disk",
-        s(&fixture("halftunnel.obj")),
-        "-o",
-        s(&out),
-        "--outer",
-        "3",
-    ]);
+    let o = conformap(&["disk", s(&halftunnel), "-o", s(&out), "--outer", "3"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--outer 3"));
 }
@@ -307,20 +255,12 @@ fn gltf_and_glb_outputs_round_trip_through_metrics() {
     let rep = d.join("r.json");
     for ext in ["glb", "gltf"] {
         let out = d.join(format!("o.{ext}"));
-        let o = conformap(&[
-            "disk",
-            s(&fixture("woody.obj")),
-            "-o",
-            s(&out),
-            "--report",
-            s(&rep),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let ec = json(&rep)["metrics"]["conformal_energy"].as_f64().unwrap();
-        let o = conformap(&["metrics", s(&fixture("woody.obj")), s(&out), "--json"]);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-        let e = v["metrics"]["conformal_energy"].as_f64().unwrap();
+        let woody = fixture("woody.obj");
+        let r = map_report(&["disk", s(&woody)], &out, None, &rep);
+        let ec = r["metrics"]["conformal_energy"].as_f64().unwrap();
+        let e = metrics_json(&woody, &out)["metrics"]["conformal_energy"]
+            .as_f64()
+            .unwrap();
         // glTF stores texture coordinates as f32
         assert!((e - ec).abs() < 1e-4 * ec.max(1e-3), "{ext}: {e} vs {ec}");
     }
@@ -359,18 +299,9 @@ fn orderings_give_the_same_map() {
             d.join(format!("{ordering}.obj")),
             d.join(format!("{ordering}.json")),
         );
-        let o = conformap(&[
-            "disk",
-            s(&fixture("spothead.obj")),
-            "-o",
-            s(&out),
-            "--ordering",
-            ordering,
-            "--report",
-            s(&rep),
-        ]);
-        assert!(o.status.success(), "{ordering}: {}", stderr(&o));
-        let r = json(&rep);
+        let spothead = fixture("spothead.obj");
+        let args = ["disk", s(&spothead), "--ordering", ordering];
+        let r = map_report(&args, &out, None, &rep);
         runs.push((
             r["factorization"]["ordering"].as_str().unwrap().to_string(),
             r["metrics"]["conformal_energy"].as_f64().unwrap(),

@@ -5,11 +5,7 @@
 
 mod support;
 
-use support::{conformap, fixture, s, stderr, tmpdir};
-
-fn json(path: &std::path::Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
+use support::{conformap, fixture, json, map_report, mobius, s, stderr, tmpdir};
 
 #[test]
 fn an_output_that_names_an_input_or_another_output_is_a_usage_error() {
@@ -103,39 +99,16 @@ fn sphere_and_mobius_take_repair_max_memory_and_report_real_convergence() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("--max-memory"), "{}", stderr(&o));
     assert!(!out.exists());
-    let o = conformap(&[
-        "sphere",
-        s(&spot),
-        "-o",
-        s(&out),
-        "--report",
-        s(&rep),
-        "--repair",
-        "--max-memory",
-        "2G",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r = json(&rep);
+    let args = ["sphere", s(&spot), "--repair", "--max-memory", "2G"];
+    let r = map_report(&args, &out, None, &rep);
     assert_eq!(r["solver"]["converged"], true);
     assert!(r["solver"]["residual"].as_f64().unwrap() < 1e-12);
     assert_eq!(r["repairs"]["applied"].as_array().unwrap().len(), 0);
     assert_eq!(r["memory"]["limit_source"], "--max-memory");
     // mobius of that map: its residual is the gradient norm at the optimum, not a constant
     let (moved, mrep) = (d.join("m.obj"), d.join("m.json"));
-    let o = conformap(&[
-        "mobius",
-        s(&spot),
-        s(&out),
-        "--domain",
-        "sphere",
-        "--objective",
-        "uniform",
-        "-o",
-        s(&moved),
-        "--report",
-        s(&mrep),
-        "--repair",
-    ]);
+    let extra = ["--report", s(&mrep), "--repair"];
+    let o = mobius(&spot, &out, "sphere", "uniform", &extra, &moved);
     assert!(o.status.success(), "{}", stderr(&o));
     let m = json(&mrep);
     assert_eq!(m["solver"]["converged"], true);
@@ -151,18 +124,9 @@ fn sphere_and_mobius_take_repair_max_memory_and_report_real_convergence() {
 fn double_cover_is_a_disk_method() {
     let d = tmpdir("pipeline-double-cover");
     let (out, rep) = (d.join("dc.obj"), d.join("dc.json"));
-    let o = conformap(&[
-        "disk",
-        s(&fixture("spothead.obj")),
-        "-o",
-        s(&out),
-        "--method",
-        "double-cover",
-        "--report",
-        s(&rep),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r = json(&rep);
+    let spothead = fixture("spothead.obj");
+    let args = ["disk", s(&spothead), "--method", "double-cover"];
+    let r = map_report(&args, &out, None, &rep);
     assert_eq!(r["method"], "double-cover");
     let m = &r["metrics"];
     assert_eq!(m["flipped_faces"], 0);
@@ -282,18 +246,10 @@ fn an_obj_triangle_soup_is_welded_by_repair_as_gltf_is_on_reading() {
     let r = json(&rep);
     assert_eq!(r["input"]["vertices"], 694);
     let (wuv, wrep) = (d.join("w.obj"), d.join("w.json"));
-    let o = conformap(&[
-        "disk",
-        s(&fixture("woody.obj")),
-        "-o",
-        s(&wuv),
-        "--report",
-        s(&wrep),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let w = map_report(&["disk", s(&fixture("woody.obj"))], &wuv, None, &wrep);
     let (a, b) = (
         r["metrics"]["conformal_energy"].as_f64().unwrap(),
-        json(&wrep)["metrics"]["conformal_energy"].as_f64().unwrap(),
+        w["metrics"]["conformal_energy"].as_f64().unwrap(),
     );
     assert!((a - b).abs() < 1e-9 * b, "{a} vs {b}");
 }

@@ -13,16 +13,11 @@ fn the_memory_check_refuses_early_with_the_estimate() {
     let d = tmpdir("memory");
     let (out, rep) = (d.join("o.obj"), d.join("r.json"));
     let spothead = fixture("spothead.obj");
-    let o = conformap(&[
-        "disk",
-        s(&spothead),
-        "-o",
-        s(&out),
-        "--report",
-        s(&rep),
-        "--max-memory",
-        "10M",
-    ]);
+    let disk = |limit: &str| {
+        let args = ["disk", s(&spothead), "-o", s(&out), "--report", s(&rep)];
+        conformap(&[&args[..], &["--max-memory", limit]].concat())
+    };
+    let o = disk("10M");
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
@@ -47,16 +42,7 @@ fn the_memory_check_refuses_early_with_the_estimate() {
         stderr(&o)
     );
     // a generous limit passes and is reported with the estimate and the measured peak
-    let o = conformap(&[
-        "disk",
-        s(&spothead),
-        "-o",
-        s(&out),
-        "--report",
-        s(&rep),
-        "--max-memory",
-        "4GiB",
-    ]);
+    let o = disk("4GiB");
     assert!(o.status.success(), "{}", stderr(&o));
     let m = &json(&rep)["memory"];
     assert_eq!(m["limit_bytes"], 4u64 << 30);

@@ -2,27 +2,15 @@
 
 mod support;
 
-use support::{conformap, fixture, json, s, stderr, tmpdir};
+use support::{conformap, conformap_ok, fixture, json, map_report, mobius, s, stderr, tmpdir};
 
 #[test]
 fn sphere_then_mobius_on_spot() {
     let d = tmpdir("spot");
     let (out, flat, rep) = (d.join("uv.obj"), d.join("sphere.obj"), d.join("r.json"));
     let spot = fixture("spot.obj");
-    let o = conformap(&[
-        "sphere",
-        s(&spot),
-        "-o",
-        s(&out),
-        "--flat",
-        s(&flat),
-        "--report",
-        s(&rep),
-        "--mobius",
-        "uniform",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let r = json(&rep);
+    let args = ["sphere", s(&spot), "--mobius", "uniform"];
+    let r = map_report(&args, &out, Some(&flat), &rep);
     for key in [
         "conformap_version",
         "command",
@@ -63,21 +51,14 @@ fn sphere_then_mobius_on_spot() {
         .collect();
     std::fs::write(&region, format!("# every other face\n{faces}")).unwrap();
     let (out2, rep2) = (d.join("emph.obj"), d.join("e.json"));
-    let o = conformap(&[
-        "mobius",
-        s(&spot),
-        s(&flat),
-        "--domain",
+    let o = mobius(
+        &spot,
+        &flat,
         "sphere",
-        "--objective",
         "emphasize",
-        "--region",
-        s(&region),
-        "-o",
-        s(&out2),
-        "--report",
-        s(&rep2),
-    ]);
+        &["--region", s(&region), "--report", s(&rep2)],
+        &out2,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let e = json(&rep2);
     assert_eq!(e["command"], "mobius");
@@ -86,17 +67,7 @@ fn sphere_then_mobius_on_spot() {
         mob["region_share_after"].as_f64().unwrap() >= mob["region_share_before"].as_f64().unwrap()
     );
     // the sphere map may also be given as its equirectangular texture coordinates
-    let o = conformap(&[
-        "mobius",
-        s(&spot),
-        s(&out),
-        "--domain",
-        "sphere",
-        "--objective",
-        "uniform",
-        "-o",
-        s(&d.join("u.obj")),
-    ]);
+    let o = mobius(&spot, &out, "sphere", "uniform", &[], &d.join("u.obj"));
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
@@ -112,46 +83,22 @@ fn bad_inputs_and_usage() {
     // a region index out of range: exit 1, naming the file and line
     let region = d.join("r.txt");
     std::fs::write(&region, "0\n1\n99999\n").unwrap();
-    let o = conformap(&[
-        "mobius",
-        s(&fixture("spot.obj")),
-        s(&fixture("spot.obj")),
-        "--domain",
+    let spot = fixture("spot.obj");
+    let o = mobius(
+        &spot,
+        &spot,
         "sphere",
-        "--objective",
         "emphasize",
-        "--region",
-        s(&region),
-        "-o",
-        s(&out),
-    ]);
+        &["--region", s(&region)],
+        &out,
+    );
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("r.txt line 3"), "{}", stderr(&o));
     // emphasize without a region: usage, exit 2
-    let o = conformap(&[
-        "mobius",
-        s(&fixture("spot.obj")),
-        s(&fixture("spot.obj")),
-        "--domain",
-        "sphere",
-        "--objective",
-        "emphasize",
-        "-o",
-        s(&out),
-    ]);
+    let o = mobius(&spot, &spot, "sphere", "emphasize", &[], &out);
     assert_eq!(o.status.code(), Some(2));
     // the mesh itself is no sphere map
-    let o = conformap(&[
-        "mobius",
-        s(&fixture("spot.obj")),
-        s(&fixture("spot.obj")),
-        "--domain",
-        "sphere",
-        "--objective",
-        "uniform",
-        "-o",
-        s(&out),
-    ]);
+    let o = mobius(&spot, &spot, "sphere", "uniform", &[], &out);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
 
@@ -160,21 +107,8 @@ fn disk_mobius_of_a_cem_map() {
     let d = tmpdir("disk");
     let (uv, out, rep) = (d.join("uv.obj"), d.join("m.obj"), d.join("m.json"));
     let woody = fixture("woody.obj");
-    let o = conformap(&["disk", s(&woody), "-o", s(&uv)]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let o = conformap(&[
-        "mobius",
-        s(&woody),
-        s(&uv),
-        "--domain",
-        "disk",
-        "--objective",
-        "uniform",
-        "-o",
-        s(&out),
-        "--report",
-        s(&rep),
-    ]);
+    conformap_ok(&["disk", s(&woody), "-o", s(&uv)]);
+    let o = mobius(&woody, &uv, "disk", "uniform", &["--report", s(&rep)], &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let m = &json(&rep)["metrics"];
     assert!(
@@ -197,8 +131,7 @@ fn mobius_reads_a_crowded_flat_map_and_keeps_it_flip_free() {
     let d = tmpdir("crowded");
     let (uv, flat) = (d.join("uv.obj"), d.join("flat.obj"));
     let mesh = fixture("alligator.obj");
-    let o = conformap(&["disk", s(&mesh), "-o", s(&uv), "--flat", s(&flat)]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    conformap_ok(&["disk", s(&mesh), "-o", s(&uv), "--flat", s(&flat)]);
     let info = conformap(&["info", s(&flat)]);
     assert_eq!(
         info.status.code(),
@@ -207,19 +140,14 @@ fn mobius_reads_a_crowded_flat_map_and_keeps_it_flip_free() {
     );
     for param in [&flat, &uv] {
         let (out, rep) = (d.join("moved.obj"), d.join("r.json"));
-        let o = conformap(&[
-            "mobius",
-            s(&mesh),
-            s(param),
-            "--domain",
+        let o = mobius(
+            &mesh,
+            param,
             "disk",
-            "--objective",
             "uniform",
-            "-o",
-            s(&out),
-            "--report",
-            s(&rep),
-        ]);
+            &["--report", s(&rep)],
+            &out,
+        );
         assert!(o.status.success(), "{}: {}", param.display(), stderr(&o));
         let r = json(&rep);
         let m = &r["metrics"];

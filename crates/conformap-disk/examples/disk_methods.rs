@@ -6,30 +6,11 @@
 //! [--max-iter N] [--min-gap G] [--rho R] [--qn-memory M] [--schur dense|implicit]
 //! [--start arc|angenent|N] [--no-precond] [--only cem|ccem|qn] [--table] [--steps K] [-v] MESH.obj...`
 //!
-//! A throwaway reader for plain `v`/`f` OBJ files (the meshes in `../shared/meshes`).
+//! Reads plain `v`/`f` OBJ files (the meshes in `../shared/meshes`) with the testkit's reader.
 use std::time::Instant;
 
 use conformap_disk::*;
-use conformap_mesh::TriMesh;
-
-fn read(name: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
-    let text = std::fs::read_to_string(name)?;
-    let mut pos = vec![];
-    let mut faces = vec![];
-    for l in text.lines() {
-        let t: Vec<&str> = l.split_whitespace().collect();
-        match t.first() {
-            Some(&"v") => pos.push([t[1].parse()?, t[2].parse()?, t[3].parse()?]),
-            Some(&"f") => faces.push([
-                t[1].parse::<u32>()? - 1,
-                t[2].parse::<u32>()? - 1,
-                t[3].parse::<u32>()? - 1,
-            ]),
-            _ => {}
-        }
-    }
-    Ok(TriMesh::try_new(pos, faces)?)
-}
+use conformap_testkit::read_plain_obj;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut opts = CcemOptions::DEFAULT;
@@ -75,7 +56,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     for name in files {
-        let mesh = read(&name)?;
+        let mesh = read_plain_obj(std::path::Path::new(&name))?;
         let short = name.rsplit('/').next().unwrap_or(&name).to_string();
         let t = Instant::now();
         let lmesh = conformap_operators::cotan_laplacian(&mesh);

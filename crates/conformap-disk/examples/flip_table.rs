@@ -13,25 +13,8 @@ use conformap_disk::{
 };
 use conformap_mesh::TriMesh;
 use conformap_operators::{cotan_laplacian, quadratic_form};
+use conformap_testkit::read_plain_obj;
 use num_complex::Complex64;
-
-fn read(name: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
-    let text = std::fs::read_to_string(name)?;
-    let (mut pos, mut faces) = (vec![], vec![]);
-    for l in text.lines() {
-        let t: Vec<&str> = l.split_whitespace().collect();
-        match t.first() {
-            Some(&"v") => pos.push([t[1].parse()?, t[2].parse()?, t[3].parse()?]),
-            Some(&"f") => faces.push([
-                t[1].parse::<u32>()? - 1,
-                t[2].parse::<u32>()? - 1,
-                t[3].parse::<u32>()? - 1,
-            ]),
-            _ => {}
-        }
-    }
-    Ok(TriMesh::try_new(pos, faces)?)
-}
 
 /// Faces with non-positive signed image area, and the smallest positive image area.
 fn flips(mesh: &TriMesh, f: &[Complex64]) -> (usize, f64) {
@@ -85,7 +68,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          | min image area | assemble ms | factor ms | solve ms"
     );
     for name in files {
-        let mesh = read(&name)?;
+        let mesh = read_plain_obj(std::path::Path::new(&name))?;
         let short = name.rsplit('/').next().unwrap_or(&name).to_string();
         let t = Instant::now();
         let l_mesh = cotan_laplacian(&mesh);

@@ -5,29 +5,11 @@
 use std::time::Instant;
 
 use conformap_disk::DiskProblem;
-use conformap_mesh::TriMesh;
-
-fn read(name: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
-    let text = std::fs::read_to_string(name)?;
-    let (mut pos, mut faces) = (vec![], vec![]);
-    for l in text.lines() {
-        let t: Vec<&str> = l.split_whitespace().collect();
-        match t.first() {
-            Some(&"v") => pos.push([t[1].parse()?, t[2].parse()?, t[3].parse()?]),
-            Some(&"f") => faces.push([
-                t[1].parse::<u32>()? - 1,
-                t[2].parse::<u32>()? - 1,
-                t[3].parse::<u32>()? - 1,
-            ]),
-            _ => {}
-        }
-    }
-    Ok(TriMesh::try_new(pos, faces)?)
-}
+use conformap_testkit::read_plain_obj;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     for name in std::env::args().skip(1) {
-        let mesh = read(&name)?;
+        let mesh = read_plain_obj(std::path::Path::new(&name))?;
         let p = DiskProblem::new(&mesh)?;
         let ni = p.blocks().ii.rows();
         let nb = p.num_boundary();

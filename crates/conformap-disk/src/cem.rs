@@ -5,6 +5,7 @@ use std::time::Instant;
 use num_complex::Complex64;
 
 use crate::initial::{angenent_boundary, centralize_normalize};
+use crate::options::with_setters;
 use crate::problem::DiskProblem;
 use crate::report::{DiskMap, SolverReport};
 use crate::DiskError;
@@ -33,25 +34,10 @@ impl CemOptions {
         reflect_interior: true,
     };
 
-    /// Sets [`Self::max_iter`].
-    #[must_use]
-    pub fn with_max_iter(mut self, max_iter: usize) -> Self {
-        self.max_iter = max_iter;
-        self
-    }
-
-    /// Sets [`Self::tol`].
-    #[must_use]
-    pub fn with_tol(mut self, tol: f64) -> Self {
-        self.tol = tol;
-        self
-    }
-
-    /// Sets [`Self::reflect_interior`].
-    #[must_use]
-    pub fn with_reflect_interior(mut self, reflect: bool) -> Self {
-        self.reflect_interior = reflect;
-        self
+    with_setters! {
+        with_max_iter(max_iter: usize);
+        with_tol(tol: f64);
+        with_reflect_interior(reflect_interior: bool);
     }
 }
 

@@ -111,7 +111,18 @@ pub fn angenent_boundary(problem: &DiskProblem<'_>) -> Result<InitialBoundary, D
     }
     let sol = factor.solve_complex(&rhs);
     let full = reduced.assemble(&sol, &[Complex64::new(0.0, 0.0)]);
-    let mut fb = problem.partition().boundary_values(&full);
+    let fb = problem.partition().boundary_values(&full);
+    oriented_initial(fb, boundary, face, factor_ms)
+}
+
+/// The initial boundary from the solved values `fb` of Eq. 14: centralized, normalized and,
+/// if clockwise, conjugated (so the boundary runs counter-clockwise).
+fn oriented_initial(
+    mut fb: Vec<Complex64>,
+    boundary: &[u32],
+    face: usize,
+    factor_ms: f64,
+) -> Result<InitialBoundary, DiskError> {
     centralize_normalize(&mut fb, boundary, "initial map")?;
     let conjugated = polygon_area(&fb) < 0.0;
     if conjugated {
@@ -167,19 +178,8 @@ pub(crate) fn angenent_from_schur(
     let mut fb = Vec::with_capacity(nb);
     fb.push(Complex64::new(0.0, 0.0));
     fb.extend((0..m).map(|k| Complex64::new(x[k], x[m + k])));
-    centralize_normalize(&mut fb, &part.boundary, "initial map")?;
-    let conjugated = polygon_area(&fb) < 0.0;
-    if conjugated {
-        for z in &mut fb {
-            *z = z.conj();
-        }
-    }
-    Ok(InitialBoundary {
-        boundary: fb,
-        face,
-        conjugated,
-        factor_ms: t0.elapsed().as_secs_f64() * 1e3,
-    })
+    let factor_ms = t0.elapsed().as_secs_f64() * 1e3;
+    oriented_initial(fb, &part.boundary, face, factor_ms)
 }
 
 /// Centralization (CEM Eq. 15/24) and normalization (Eq. 16/25) of boundary values.

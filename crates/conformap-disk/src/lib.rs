@@ -46,6 +46,7 @@ mod koebe;
 mod laplacian_choice;
 mod memory;
 mod method;
+mod options;
 mod problem;
 mod report;
 mod unfold;

@@ -9,6 +9,7 @@ use conformap_mesh::TriMesh;
 
 use crate::ccem::{CcemOptions, CcemStart, CcemVariant};
 use crate::cem::interior_residual;
+use crate::options::{finite_non_negative, with_setters};
 use crate::{
     ccem, cem, harmonic_arc_length, unfold_disk_map, CemOptions, DiskError, DiskMap, DiskProblem,
 };
@@ -97,39 +98,12 @@ impl DiskOptions {
         keep_folds: false,
     };
 
-    /// Sets [`Self::max_iter`].
-    #[must_use]
-    pub fn with_max_iter(mut self, max_iter: Option<usize>) -> Self {
-        self.max_iter = max_iter;
-        self
-    }
-
-    /// Sets [`Self::tol`].
-    #[must_use]
-    pub fn with_tol(mut self, tol: Option<f64>) -> Self {
-        self.tol = tol;
-        self
-    }
-
-    /// Sets [`Self::cem`].
-    #[must_use]
-    pub fn with_cem(mut self, cem: CemOptions) -> Self {
-        self.cem = cem;
-        self
-    }
-
-    /// Sets [`Self::keep_folds`].
-    #[must_use]
-    pub fn with_keep_folds(mut self, keep_folds: bool) -> Self {
-        self.keep_folds = keep_folds;
-        self
-    }
-
-    /// Sets [`Self::ccem`].
-    #[must_use]
-    pub fn with_ccem(mut self, ccem: CcemOptions) -> Self {
-        self.ccem = ccem;
-        self
+    with_setters! {
+        with_max_iter(max_iter: Option<usize>);
+        with_tol(tol: Option<f64>);
+        with_cem(cem: CemOptions);
+        with_keep_folds(keep_folds: bool);
+        with_ccem(ccem: CcemOptions);
     }
 }
 
@@ -147,12 +121,7 @@ pub fn run_disk_method(
     options: &DiskOptions,
 ) -> Result<DiskMap, DiskError> {
     if let Some(tol) = options.tol {
-        if !(tol >= 0.0 && tol.is_finite()) {
-            return Err(DiskError::InvalidOption {
-                name: "tol",
-                reason: "must be a finite number ≥ 0",
-            });
-        }
+        finite_non_negative("tol", tol)?;
     }
     match method {
         DiskMethod::Harmonic => unfolded(problem, harmonic_arc_length(problem), options),

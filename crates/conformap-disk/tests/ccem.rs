@@ -9,38 +9,8 @@ use conformap_disk::{
 };
 use conformap_mesh::TriMesh;
 use conformap_operators::{cotan_laplacian, quadratic_form};
+use conformap_testkit::{fixture_mesh as fixture, read_shared_mesh_or_skip};
 use num_complex::Complex64;
-
-/// Reads `<workspace>/fixtures/<name>`, or `../shared/meshes/<name>` with `shared`; `None`
-/// when the file is missing (the shared meshes are not in a fresh clone).
-fn read_obj(name: &str, shared: bool) -> Option<TriMesh> {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let path = if shared {
-        format!("{root}/../shared/meshes/{name}")
-    } else {
-        format!("{root}/fixtures/{name}")
-    };
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        eprintln!("SKIPPED: {path} not found");
-        return None;
-    };
-    let (mut pos, mut faces) = (Vec::new(), Vec::new());
-    for line in text.lines() {
-        let t: Vec<&str> = line.split_whitespace().collect();
-        let num = |k: usize| t[k].parse::<f64>().expect("coordinate");
-        let idx = |k: usize| t[k].parse::<u32>().expect("index") - 1;
-        match t.first() {
-            Some(&"v") => pos.push([num(1), num(2), num(3)]),
-            Some(&"f") => faces.push([idx(1), idx(2), idx(3)]),
-            _ => {}
-        }
-    }
-    Some(TriMesh::try_new(pos, faces).expect("valid mesh"))
-}
-
-fn fixture(name: &str) -> TriMesh {
-    read_obj(name, false).expect("committed fixture")
-}
 
 /// `E_C` with the mesh's own cotangent weights (CEM Eq. 5–8), whatever Laplacian the
 /// problem solved with: the number the metrics crate reports and other tools are
@@ -472,7 +442,7 @@ fn class_a_targets_on_shared_meshes() {
         ("igea_open.obj", 0.0322),
     ];
     for (name, target) in targets {
-        let Some(mesh) = read_obj(name, true) else {
+        let Some(mesh) = read_shared_mesh_or_skip(name, "class_a_targets_on_shared_meshes") else {
             continue;
         };
         let opts = CcemOptions::DEFAULT.with_record_steps(true);
@@ -491,7 +461,7 @@ fn class_a_targets_on_shared_meshes() {
 #[test]
 #[ignore = "shared mesh; run in release"]
 fn maze_never_folds() {
-    let Some(mesh) = read_obj("maze.obj", true) else {
+    let Some(mesh) = read_shared_mesh_or_skip("maze.obj", "maze_never_folds") else {
         return;
     };
     let mut problem = DiskProblem::new(&mesh).expect("disk");

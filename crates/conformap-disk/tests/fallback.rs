@@ -7,12 +7,7 @@
 use conformap_disk::{compute_disk_map, DiskError, DiskMethod, DiskOptions};
 use conformap_mesh::TriMesh;
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use conformap_testkit::{read_plain_obj, real_mesh_or_skip};
-
-fn fixture(name: &str) -> TriMesh {
-    let path = conformap_testkit::fixture_path(name);
-    read_plain_obj(&path).expect("fixture")
-}
+use conformap_testkit::{fixture_mesh as fixture, read_real_mesh_or_skip};
 
 fn stretched(mesh: &TriMesh, axis: usize, factor: f64) -> TriMesh {
     let p = mesh
@@ -93,21 +88,10 @@ fn ccem_from_the_cem_map_never_ends_above_cem() {
 #[test]
 #[ignore = "class-a meshes of ../shared/meshes; run with --ignored in release"]
 fn ccem_at_or_below_cem_on_every_class_a_mesh() {
-    for name in [
-        "woody.obj",
-        "alligator.obj",
-        "spothead.obj",
-        "maze.obj",
-        "camelhead.obj",
-        "human_face.obj",
-        "chinese_lion.obj",
-        "hand.obj",
-        "igea_open.obj",
-    ] {
-        let Some(path) = real_mesh_or_skip(name, "ccem_at_or_below_cem") else {
+    for name in conformap_testkit::CLASS_A {
+        let Some(mesh) = read_real_mesh_or_skip(name, "ccem_at_or_below_cem") else {
             continue;
         };
-        let mesh = read_plain_obj(&path).unwrap();
         let (ccem, cem) = (
             energy(&mesh, DiskMethod::Ccem).unwrap(),
             energy(&mesh, DiskMethod::Cem).unwrap(),

@@ -16,22 +16,11 @@ use conformap_global::{
     sphere_metrics, DiskAutomorphism, MobiusObjective, MobiusOptions, SphereOptions,
 };
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_testkit::{CLASS_A, CLASS_C};
 use num_complex::Complex64;
 
 type Res = Result<(), Box<dyn std::error::Error>>;
 
-const CLASS_C: [&str; 4] = ["spot.obj", "david_head.obj", "armadillo.obj", "brain.obj"];
-const CLASS_A: [&str; 9] = [
-    "woody.obj",
-    "alligator.obj",
-    "spothead.obj",
-    "maze.obj",
-    "camelhead.obj",
-    "human_face.obj",
-    "chinese_lion.obj",
-    "hand.obj",
-    "igea_open.obj",
-];
 const COVER: [&str; 6] = [
     "woody.obj",
     "alligator.obj",

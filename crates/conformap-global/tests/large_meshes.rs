@@ -4,10 +4,8 @@
 
 mod common;
 
-use conformap_global::{
-    optimize_disk_mobius, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
-    MobiusOptions, SphereOptions,
-};
+use common::{assert_more_uniform, uniform_disk, uniform_sphere};
+use conformap_global::{sphere_map, sphere_metrics, SphereOptions};
 
 /// Mean chord-angle distortion bounds (degrees): the 2° for david_head and brain
 /// (measured 0.877° and 1.226°); armadillo measured 1.926°, spot 2.953°.
@@ -22,10 +20,10 @@ const MEAN_ANGLE_BOUND_DEG: [(&str, f64); 4] = [
 #[ignore = "large meshes: run in release with --ignored"]
 fn class_c_sphere_maps() {
     for (name, bound) in MEAN_ANGLE_BOUND_DEG {
-        let Some(path) = conformap_testkit::shared_mesh_or_skip(name, "class_c_sphere_maps") else {
+        let Some(mesh) = conformap_testkit::read_shared_mesh_or_skip(name, "class_c_sphere_maps")
+        else {
             continue;
         };
-        let mesh = conformap_testkit::read_plain_obj(&path).unwrap();
         let map = sphere_map(&mesh, &SphereOptions::DEFAULT).unwrap();
         let m = sphere_metrics(&mesh, &map.points).unwrap();
         assert!(
@@ -39,20 +37,8 @@ fn class_c_sphere_maps() {
             "{name}: {:?}",
             m.angle_distortion_deg
         );
-        let best = optimize_sphere_mobius(
-            &mesh,
-            &map.points,
-            &MobiusObjective::Uniform,
-            &MobiusOptions::DEFAULT,
-        )
-        .unwrap();
-        let r = &best.report;
-        assert!(
-            r.uniformity_after < r.uniformity_before,
-            "{name}: {} -> {}",
-            r.uniformity_before,
-            r.uniformity_after
-        );
+        let best = uniform_sphere(&mesh, &map.points);
+        assert_more_uniform(&best.report, name);
         let m2 = sphere_metrics(&mesh, &best.points).unwrap();
         assert_eq!(m2.flipped_faces, 0, "{name}");
         assert!(m2.radius_residual_max <= 1e-12);
@@ -80,21 +66,10 @@ const CROWDED: [(&str, f64); 3] = [
 #[test]
 #[ignore = "large meshes: run in release with --ignored"]
 fn class_a_mobius_lowers_uniformity_of_cem_and_ccem() {
-    for name in [
-        "woody.obj",
-        "alligator.obj",
-        "spothead.obj",
-        "maze.obj",
-        "camelhead.obj",
-        "human_face.obj",
-        "chinese_lion.obj",
-        "hand.obj",
-        "igea_open.obj",
-    ] {
-        let Some(path) = conformap_testkit::shared_mesh_or_skip(name, "class_a_mobius") else {
+    for name in conformap_testkit::CLASS_A {
+        let Some(mesh) = conformap_testkit::read_shared_mesh_or_skip(name, "class_a_mobius") else {
             continue;
         };
-        let mesh = conformap_testkit::read_plain_obj(&path).unwrap();
         let mut problem = conformap_disk::DiskProblem::new(&mesh).unwrap();
         let cem = conformap_disk::cem(&mut problem, &conformap_disk::CemOptions::DEFAULT).unwrap();
         let ccem = conformap_disk::compute_disk_map(
@@ -104,20 +79,9 @@ fn class_a_mobius_lowers_uniformity_of_cem_and_ccem() {
         )
         .unwrap();
         for (method, map) in [("cem", &cem.map), ("ccem-qn", &ccem.map)] {
-            let best = optimize_disk_mobius(
-                &mesh,
-                map,
-                &MobiusObjective::Uniform,
-                &MobiusOptions::DEFAULT,
-            )
-            .unwrap();
+            let best = uniform_disk(&mesh, map);
             let r = &best.report;
-            assert!(
-                r.uniformity_after < r.uniformity_before,
-                "{name} {method}: {} -> {}",
-                r.uniformity_before,
-                r.uniformity_after
-            );
+            assert_more_uniform(r, &format!("{name} {method}"));
             // the moved map inverts no face the given one did not (maze: the optimal boost
             // would invert 2,393 crowded faces and is shortened)
             let inverted = |m: &[num_complex::Complex64]| {

@@ -2,11 +2,8 @@
 
 mod common;
 
-use common::norm;
-use conformap_global::{
-    optimize_sphere_mobius, sphere_map, sphere_metrics, GlobalError, MobiusObjective,
-    MobiusOptions, SphereOptions,
-};
+use common::{norm, uniform_sphere};
+use conformap_global::{sphere_map, sphere_metrics, GlobalError, SphereOptions};
 
 /// Mean chord-angle distortion of spot's sphere map, measured 2.953° (default options; see
 /// the README table), with headroom for platform rounding.
@@ -16,13 +13,7 @@ const SPOT_MEAN_ANGLE_BOUND_DEG: f64 = 3.1;
 fn round_sphere_maps_to_itself_up_to_rotation() {
     let mesh = conformap_testkit::icosphere(1.0, 4);
     let map = sphere_map(&mesh, &SphereOptions::DEFAULT).unwrap();
-    let best = optimize_sphere_mobius(
-        &mesh,
-        &map.points,
-        &MobiusObjective::Uniform,
-        &MobiusOptions::DEFAULT,
-    )
-    .unwrap();
+    let best = uniform_sphere(&mesh, &map.points);
     let m = sphere_metrics(&mesh, &best.points).unwrap();
     assert_eq!(m.flipped_faces, 0);
     assert!(
@@ -66,13 +57,7 @@ fn spot_maps_to_the_sphere_without_inversions() {
             < 0.8 * r.stages[0].mean_angle_distortion_deg
     );
     // Möbius optimization lowers the uniformity energy and keeps the map on the sphere
-    let best = optimize_sphere_mobius(
-        &mesh,
-        &map.points,
-        &MobiusObjective::Uniform,
-        &MobiusOptions::DEFAULT,
-    )
-    .unwrap();
+    let best = uniform_sphere(&mesh, &map.points);
     assert!(best.report.uniformity_after < 0.9 * best.report.uniformity_before);
     let m2 = sphere_metrics(&mesh, &best.points).unwrap();
     assert!(m2.radius_residual_max <= 1e-12);

@@ -74,11 +74,7 @@ pub fn write_mesh_with_uv(
     source: Option<&SourceInfo>,
 ) -> Result<(), IoError> {
     let path = path.as_ref();
-    let format = Format::from_path(path)?;
-    let bad = |problem| IoError::BadWriteInput {
-        path: path.to_path_buf(),
-        problem,
-    };
+    let (format, bad) = write_target(path)?;
     if uv.len() != mesh.num_vertices() {
         return Err(bad(WriteProblem::UvCount {
             expected: mesh.num_vertices(),
@@ -126,11 +122,7 @@ pub fn write_flat(
     faces: &[[u32; 3]],
 ) -> Result<(), IoError> {
     let path = path.as_ref();
-    let format = Format::from_path(path)?;
-    let bad = |problem| IoError::BadWriteInput {
-        path: path.to_path_buf(),
-        problem,
-    };
+    let (format, bad) = write_target(path)?;
     for (face, f) in faces.iter().enumerate() {
         if let Some(&index) = f.iter().find(|&&i| i as usize >= points.len()) {
             return Err(bad(WriteProblem::FaceIndex {
@@ -148,6 +140,19 @@ pub fn write_flat(
             write_atomically(path, &bytes)
         }
     }
+}
+
+/// The format of an output `path` (by its extension), and the maker of the
+/// [`IoError::BadWriteInput`] error naming that path.
+pub(crate) fn write_target(
+    path: &Path,
+) -> Result<(Format, impl Fn(WriteProblem) -> IoError + Copy + '_), IoError> {
+    let format = Format::from_path(path)?;
+    let bad = move |problem| IoError::BadWriteInput {
+        path: path.to_path_buf(),
+        problem,
+    };
+    Ok((format, bad))
 }
 
 fn check_finite<'a>(rows: impl Iterator<Item = &'a [f64]>) -> Result<(), WriteProblem> {

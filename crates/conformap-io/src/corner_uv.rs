@@ -6,6 +6,7 @@ use std::path::Path;
 
 use conformap_mesh::TriMesh;
 
+use crate::api::write_target;
 use crate::atomic::{write_atomically, write_parts_atomically};
 use crate::error::{IoError, WriteProblem};
 use crate::gltffile::encode_gltf;
@@ -129,11 +130,7 @@ pub fn write_mesh_with_corner_uv(
     uv: &CornerUv,
 ) -> Result<(), IoError> {
     let path = path.as_ref();
-    let format = Format::from_path(path)?;
-    let bad = |problem| IoError::BadWriteInput {
-        path: path.to_path_buf(),
-        problem,
-    };
+    let (format, bad) = write_target(path)?;
     uv.check(mesh.num_faces()).map_err(bad)?;
     match format {
         Format::Obj => {

@@ -7,21 +7,8 @@ mod common;
 
 use common::fixture;
 use conformap_io::{read_mesh_from_bytes, Format};
-
-/// xorshift64*: small, deterministic, good enough to pick mutations.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+// xorshift64*: small, deterministic, good enough to pick mutations
+use conformap_testkit::XorShift64Star as Rng;
 
 fn scale() -> usize {
     std::env::var("CONFORMAP_MUTATIONS")
@@ -39,7 +26,7 @@ fn mutate(rng: &mut Rng, input: &[u8], window: usize) -> Vec<u8> {
         let byte = if rng.below(2) == 0 {
             INTERESTING[rng.below(INTERESTING.len())]
         } else {
-            rng.next() as u8
+            rng.next_u64() as u8
         };
         match rng.below(3) {
             0 if at < out.len() => out[at] = byte,

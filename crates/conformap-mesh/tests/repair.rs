@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
 use conformap_mesh::{repair, MeshError, RepairOptions, Topology, TriMesh, DROPPED};
+use conformap_testkit::{grid_faces, XorShift64Star};
 
 /// A grid of `n × n` squares (two triangles each), consistently oriented.
 fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
@@ -12,15 +13,7 @@ fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
             p.push([f64::from(i), f64::from(j), 0.1 * f64::from(i * j % 3)]);
         }
     }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut f = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    (p, f)
+    (p, grid_faces(n as usize, n as usize))
 }
 
 /// A Möbius strip of `n` quads: the last quad glues the ends with a half twist.
@@ -46,18 +39,6 @@ fn mobius(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
         f.push([t0, b1, t1]);
     }
     (p, f)
-}
-
-/// xorshift64*, for reproducible random flips.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
 }
 
 #[test]
@@ -165,12 +146,12 @@ fn equal_components_keep_the_one_with_the_lowest_face() {
 #[test]
 fn random_minority_flips_are_undone_exactly() {
     let (p, f) = grid(8);
-    let mut rng = Rng(0x05ee_d0ff_11b5);
+    let mut rng = XorShift64Star(0x05ee_d0ff_11b5);
     for _ in 0..50 {
         let mut g = f.clone();
         let mut flipped = 0;
         for t in &mut g {
-            if rng.next() % 4 == 0 {
+            if rng.next_u64() % 4 == 0 {
                 t.swap(0, 2);
                 flipped += 1;
             }

@@ -1,6 +1,7 @@
 //! Every defect class of `TriMesh::try_new` is reported with the element it concerns.
 
 use conformap_mesh::{fill_holes, MeshError, Topology, TriMesh};
+use conformap_testkit::grid_faces;
 
 fn square() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     (
@@ -22,15 +23,7 @@ fn grid(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
             p.push([f64::from(i), f64::from(j), 0.0]);
         }
     }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut f = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    (p, f)
+    (p, grid_faces(n as usize, n as usize))
 }
 
 #[test]

@@ -452,21 +452,8 @@ impl Cholesky {
     /// # Ok::<(), conformap_operators::OperatorError>(())
     /// ```
     pub fn inverse_gram(&self, r: &CsMat<f64>) -> Result<InverseGram, OperatorError> {
-        let n = self.stats.n;
-        if !r.is_csc() || r.rows() != n {
-            return Err(OperatorError::NotSquareCsc {
-                rows: r.rows(),
-                cols: r.cols(),
-            });
-        }
-        let perm_inv = self.perm_inv();
-        Ok(inverse_gram::inverse_gram(
-            &self.symbolic,
-            &self.values,
-            &perm_inv,
-            r,
-            self.par,
-        ))
+        let plan = self.inverse_gram_plan(r)?;
+        Ok(inverse_gram::inverse_gram(plan, r.cols(), self.par))
     }
 
     /// The multiply–adds [`Self::inverse_gram`] would spend on `r`, from its symbolic pass
@@ -476,15 +463,20 @@ impl Cholesky {
     /// # Errors
     /// As [`Self::inverse_gram`].
     pub fn inverse_gram_cost(&self, r: &CsMat<f64>) -> Result<f64, OperatorError> {
-        let n = self.stats.n;
-        if !r.is_csc() || r.rows() != n {
+        Ok(self.inverse_gram_plan(r)?.multiply_adds())
+    }
+
+    /// The symbolic pass of [`Self::inverse_gram`] (which panels each column of `r`
+    /// reaches), after checking that `r` is CSC with [`Self::dim`] rows.
+    fn inverse_gram_plan(&self, r: &CsMat<f64>) -> Result<inverse_gram::Plan<'_>, OperatorError> {
+        if !r.is_csc() || r.rows() != self.stats.n {
             return Err(OperatorError::NotSquareCsc {
                 rows: r.rows(),
                 cols: r.cols(),
             });
         }
         let perm_inv = self.perm_inv();
-        Ok(inverse_gram::inverse_gram_cost(
+        Ok(inverse_gram::Plan::new(
             &self.symbolic,
             &self.values,
             &perm_inv,

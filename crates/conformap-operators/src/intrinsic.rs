@@ -26,6 +26,7 @@ use conformap_mesh::{TriMesh, NO_HALFEDGE};
 use sprs::CsMat;
 
 use crate::geometry::{face_areas, triangle_cotangents};
+use crate::laplacian::add_edge_weight;
 use crate::OperatorError;
 
 /// Default Delaunay tolerance: an interior edge is flipped only when
@@ -409,14 +410,7 @@ impl IntrinsicTriangulation {
                     continue;
                 }
                 let w = 0.5 * self.cot[3 * f + (k + 1) % 3];
-                let pij = pos(j, i);
-                data[pij] -= w;
-                let pji = pos(i, j);
-                data[pji] -= w;
-                let pii = pos(i, i);
-                data[pii] += w;
-                let pjj = pos(j, j);
-                data[pjj] += w;
+                add_edge_weight(&mut data, &pos, i, j, w);
             }
         }
         // round-off negative weights (positive off-diagonal entries) to zero

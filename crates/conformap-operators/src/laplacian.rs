@@ -42,18 +42,26 @@ pub fn cotan_laplacian(mesh: &TriMesh) -> CsMat<f64> {
         for k in 0..3 {
             let i = t[(k + 1) % 3] as usize;
             let j = t[(k + 2) % 3] as usize;
-            let w = 0.5 * c[k];
-            let pij = pos(j, i);
-            data[pij] -= w;
-            let pji = pos(i, j);
-            data[pji] -= w;
-            let pii = pos(i, i);
-            data[pii] += w;
-            let pjj = pos(j, j);
-            data[pjj] += w;
+            add_edge_weight(&mut data, &pos, i, j, 0.5 * c[k]);
         }
     }
     CsMat::new_csc((n, n), indptr, indices, data)
+}
+
+/// Adds the weight `w` of the edge `ij` to the values of a Laplacian in CSC form: `−w` at
+/// `(i, j)` and `(j, i)`, `+w` at `(i, i)` and `(j, j)`; `pos(col, row)` is the index in
+/// `data` of that entry of the pattern.
+pub(crate) fn add_edge_weight(
+    data: &mut [f64],
+    pos: &impl Fn(usize, usize) -> usize,
+    i: usize,
+    j: usize,
+    w: f64,
+) {
+    data[pos(j, i)] -= w;
+    data[pos(i, j)] -= w;
+    data[pos(i, i)] += w;
+    data[pos(j, j)] += w;
 }
 
 /// The sparsity pattern of the interior block `L_II` of [`cotan_laplacian`] for `part`

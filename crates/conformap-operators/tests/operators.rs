@@ -25,14 +25,7 @@ fn bumpy_grid(n: u32, planar: bool) -> TriMesh {
             p.push([x + jx, y + jy, z]);
         }
     }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut f = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
+    let f = conformap_testkit::grid_faces(n as usize, n as usize);
     TriMesh::try_new(p, f).expect("valid grid")
 }
 

@@ -34,6 +34,24 @@ pub fn fixture_path(name: &str) -> PathBuf {
     workspace_root().join("fixtures").join(name)
 }
 
+/// Class a of `../shared/meshes/` (disk topology: one boundary loop, genus 0), as listed in
+/// `shared/meshes/README.md`, smallest first.
+pub const CLASS_A: [&str; 9] = [
+    "woody.obj",
+    "alligator.obj",
+    "spothead.obj",
+    "maze.obj",
+    "camelhead.obj",
+    "human_face.obj",
+    "chinese_lion.obj",
+    "hand.obj",
+    "igea_open.obj",
+];
+
+/// Class c of `../shared/meshes/` (genus-0 closed surfaces), as listed in
+/// `shared/meshes/README.md`.
+pub const CLASS_C: [&str; 4] = ["spot.obj", "david_head.obj", "armadillo.obj", "brain.obj"];
+
 /// Path of a shared real mesh, `<workspace>/../shared/meshes/<name>`, or `None` if that file
 /// does not exist (fresh clone, CI without the mesh collection).
 pub fn shared_mesh_path(name: &str) -> Option<PathBuf> {
@@ -70,6 +88,44 @@ pub fn real_mesh_or_skip(name: &str, test: &str) -> Option<PathBuf> {
         return Some(fixture);
     }
     shared_mesh_or_skip(name, test)
+}
+
+/// Reads the committed fixture `fixtures/<name>` with [`read_plain_obj`].
+///
+/// # Panics
+/// If the fixture is missing or invalid (a broken checkout), naming the file.
+///
+/// ```
+/// let woody = conformap_testkit::fixture_mesh("woody.obj");
+/// assert_eq!(woody.num_vertices(), 694);
+/// ```
+pub fn fixture_mesh(name: &str) -> TriMesh {
+    read_or_panic(&fixture_path(name))
+}
+
+/// The shared mesh `name` read with [`read_plain_obj`], or `None` with the `SKIPPED` line
+/// of [`shared_mesh_or_skip`] when it is absent.
+///
+/// # Panics
+/// If the file is there but invalid, naming it.
+pub fn read_shared_mesh_or_skip(name: &str, test: &str) -> Option<TriMesh> {
+    shared_mesh_or_skip(name, test).map(|path| read_or_panic(&path))
+}
+
+/// The real mesh `name` (as [`real_mesh_or_skip`]: the fixture, else the shared copy) read
+/// with [`read_plain_obj`], or `None` with a `SKIPPED` line when neither exists.
+///
+/// # Panics
+/// If the file is there but invalid, naming it.
+pub fn read_real_mesh_or_skip(name: &str, test: &str) -> Option<TriMesh> {
+    real_mesh_or_skip(name, test).map(|path| read_or_panic(&path))
+}
+
+fn read_or_panic(path: &Path) -> TriMesh {
+    match read_plain_obj(path) {
+        Ok(mesh) => mesh,
+        Err(e) => panic!("{e}"),
+    }
 }
 
 /// Why [`read_plain_obj`] failed.

@@ -6,7 +6,9 @@ use std::f64::consts::TAU;
 
 use conformap_mesh::TriMesh;
 
+use crate::grid::wrapped_grid_faces;
 use crate::planar::build;
+use crate::surfaces::check_torus;
 
 /// SplitMix64: a tiny, well-mixed, seedable generator (no dependency for test meshes).
 struct SplitMix64(u64);
@@ -51,14 +53,7 @@ pub fn jittered_torus(
     jitter: f64,
     seed: u64,
 ) -> TriMesh {
-    assert!(
-        0.0 < minor && minor < major,
-        "torus needs 0 < minor < major"
-    );
-    assert!(
-        n_major >= 3 && n_minor >= 3,
-        "torus needs at least 3 × 3 vertices"
-    );
+    check_torus(major, minor, n_major, n_minor);
     assert!((0.0..0.5).contains(&jitter), "jitter must be in [0, 0.5)");
     let mut rng = SplitMix64(seed);
     let mut positions = Vec::with_capacity(n_major * n_minor);
@@ -72,13 +67,6 @@ pub fn jittered_torus(
             positions.push([rho * phi.cos(), rho * phi.sin(), minor * theta.sin()]);
         }
     }
-    let id = |i: usize, j: usize| ((j % n_minor) * n_major + i % n_major) as u32;
-    let mut faces = Vec::with_capacity(2 * n_major * n_minor);
-    for j in 0..n_minor {
-        for i in 0..n_major {
-            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
+    let faces = wrapped_grid_faces(n_major, n_minor, true, true);
     build("jittered torus", positions, faces)
 }

@@ -10,10 +10,13 @@
 //!   the expressions, values and difference in the failure message.
 //! - Fixtures: [`fixture_path`] (`<workspace>/fixtures/…`), [`shared_mesh_path`] and
 //!   [`shared_mesh_or_skip`] (`../shared/meshes/…`, absent on a fresh clone),
-//!   [`real_mesh_or_skip`] (either), and [`read_plain_obj`] for plain `v`/`f` OBJ files.
+//!   [`real_mesh_or_skip`] (either), [`read_plain_obj`] for plain `v`/`f` OBJ files (read
+//!   already: [`fixture_mesh`], [`read_shared_mesh_or_skip`], [`read_real_mesh_or_skip`]), and the
+//!   shared meshes' classes [`CLASS_A`] (disks) and [`CLASS_C`] (genus-0 closed).
 //! - Analytic meshes built in code: [`flat_disk`], [`square_grid`], [`annulus`],
 //!   [`disk_with_holes`] (flat, counter-clockwise); [`cylinder`], [`torus`], [`jittered_torus`],
-//!   [`icosphere`] (outward normals).
+//!   [`icosphere`] (outward normals); [`grid_faces`] for a grid with positions of one's own.
+//! - [`XorShift64Star`], a seeded random stream for reproducible random cases.
 //!
 //! # Example
 //! ```
@@ -30,19 +33,24 @@
 
 mod assert;
 mod fixtures;
+mod grid;
 mod holes;
 mod jittered;
 mod planar;
+mod random;
 mod surfaces;
 
 pub use assert::{check_near, check_rel_near};
 pub use fixtures::{
-    fixture_path, read_plain_obj, real_mesh_or_skip, shared_mesh_or_skip, shared_mesh_path,
-    workspace_root, FixtureError,
+    fixture_mesh, fixture_path, read_plain_obj, read_real_mesh_or_skip, read_shared_mesh_or_skip,
+    real_mesh_or_skip, shared_mesh_or_skip, shared_mesh_path, workspace_root, FixtureError,
+    CLASS_A, CLASS_C,
 };
+pub use grid::grid_faces;
 pub use holes::{disk_with_holes, Circle};
 pub use jittered::jittered_torus;
 pub use planar::{annulus, flat_disk, square_grid};
+pub use random::XorShift64Star;
 pub use surfaces::{cylinder, icosphere, torus};
 
 /// The README's examples, compiled and run as doctests.

@@ -5,6 +5,8 @@ use std::f64::consts::PI;
 
 use conformap_mesh::TriMesh;
 
+use crate::grid::grid_faces;
+
 /// Validates a mesh built by this crate. The builders construct valid meshes by design, so a
 /// failure is a bug in the builder (or arguments outside its documented range).
 pub(crate) fn build(what: &str, positions: Vec<[f64; 3]>, faces: Vec<[u32; 3]>) -> TriMesh {
@@ -107,15 +109,7 @@ pub fn square_grid(nx: usize, ny: usize) -> TriMesh {
             positions.push([i as f64 / nx as f64, j as f64 / ny as f64, 0.0]);
         }
     }
-    let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
-    let mut faces = Vec::with_capacity(2 * nx * ny);
-    for j in 0..ny {
-        for i in 0..nx {
-            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    build("square grid", positions, faces)
+    build("square grid", positions, grid_faces(nx, ny))
 }
 
 /// A planar annulus `r0 ≤ |z| ≤ r1` centred at the origin: `rings + 1` circles of `sectors`

@@ -6,23 +6,8 @@ use std::f64::consts::PI;
 
 use conformap_mesh::TriMesh;
 
+use crate::grid::wrapped_grid_faces;
 use crate::planar::build;
-
-/// Triangulates a `(columns × rows)` vertex grid, periodic in the column direction and, if
-/// `wrap_rows`, in the row direction; vertex `(i, j)` has index `j · columns + i`. Each cell
-/// `(i, j)–(i+1, j+1)` is split along that diagonal with the orientation of `∂i × ∂j`.
-fn periodic_grid_faces(columns: usize, rows: usize, wrap_rows: bool) -> Vec<[u32; 3]> {
-    let id = |i: usize, j: usize| ((j % rows) * columns + i % columns) as u32;
-    let cell_rows = if wrap_rows { rows } else { rows - 1 };
-    let mut faces = Vec::with_capacity(2 * columns * cell_rows);
-    for j in 0..cell_rows {
-        for i in 0..columns {
-            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    faces
-}
 
 /// An open cylinder of radius `radius` around the z-axis, `0 ≤ z ≤ height`: `rings + 1`
 /// circles of `sectors` vertices (circle `k` at `z = height · k / rings`, vertex `(j, k)` at
@@ -51,7 +36,7 @@ pub fn cylinder(radius: f64, height: f64, rings: usize, sectors: usize) -> TriMe
     build(
         "cylinder",
         positions,
-        periodic_grid_faces(sectors, rings + 1, false),
+        wrapped_grid_faces(sectors, rings + 1, true, false),
     )
 }
 
@@ -64,14 +49,7 @@ pub fn cylinder(radius: f64, height: f64, rings: usize, sectors: usize) -> TriMe
 /// # Panics
 /// If not `0 < minor < major`, or `n_major < 3` or `n_minor < 3`.
 pub fn torus(major: f64, minor: f64, n_major: usize, n_minor: usize) -> TriMesh {
-    assert!(
-        0.0 < minor && minor < major,
-        "torus needs 0 < minor < major"
-    );
-    assert!(
-        n_major >= 3 && n_minor >= 3,
-        "torus needs at least 3 × 3 vertices"
-    );
+    check_torus(major, minor, n_major, n_minor);
     let mut positions = Vec::with_capacity(n_major * n_minor);
     for j in 0..n_minor {
         let theta = 2.0 * PI * j as f64 / n_minor as f64;
@@ -84,8 +62,20 @@ pub fn torus(major: f64, minor: f64, n_major: usize, n_minor: usize) -> TriMesh 
     build(
         "torus",
         positions,
-        periodic_grid_faces(n_major, n_minor, true),
+        wrapped_grid_faces(n_major, n_minor, true, true),
     )
+}
+
+/// The argument checks of [`torus`] and [`crate::jittered_torus`].
+pub(crate) fn check_torus(major: f64, minor: f64, n_major: usize, n_minor: usize) {
+    assert!(
+        0.0 < minor && minor < major,
+        "torus needs 0 < minor < major"
+    );
+    assert!(
+        n_major >= 3 && n_minor >= 3,
+        "torus needs at least 3 × 3 vertices"
+    );
 }
 
 /// A round sphere of radius `radius` centred at the origin: the icosahedron, each face split

@@ -12,89 +12,38 @@ use conformap_global::{global_map, GlobalMapOptions};
 use conformap_io::{write_mesh_with_corner_uv, CornerUv};
 use conformap_operators::{cotan_laplacian, Cholesky, CholeskyOptions, LaplacianBlocks, Partition};
 
+use crate::row::{row_struct, Row};
+
 /// Extra factorizations of the reduced Laplacian for the yardstick.
 pub const REFACTOR_RUNS: usize = 2;
 
-/// One measured run.
-#[derive(Debug, Clone)]
-pub struct GlobalRow {
-    vertices: f64,
-    faces: f64,
-    genus: f64,
-    read: f64,
-    factor: f64,
-    map: f64,
-    write: f64,
-    total: f64,
-    reference: f64,
-    peak_rss_mib: f64,
-    zeros: f64,
-    folds_outside: f64,
+row_struct! {
+    /// One measured run.
+    #[derive(Debug, Clone)]
+    pub struct GlobalRow {
+        vertices,
+        faces,
+        genus,
+        read,
+        factor,
+        map,
+        write,
+        total,
+        reference,
+        peak_rss_mib,
+        zeros,
+        folds_outside,
+    }
 }
 
-const FIELDS: usize = 12;
-
-impl GlobalRow {
-    fn values(&self) -> [f64; FIELDS] {
-        [
-            self.vertices,
-            self.faces,
-            self.genus,
-            self.read,
-            self.factor,
-            self.map,
-            self.write,
-            self.total,
-            self.reference,
-            self.peak_rss_mib,
-            self.zeros,
-            self.folds_outside,
-        ]
-    }
-
-    /// The child's one-line output.
-    pub fn to_line(&self) -> String {
-        let v: Vec<String> = self.values().iter().map(|x| x.to_string()).collect();
-        v.join(" ")
-    }
-
-    /// Parses [`Self::to_line`].
-    pub fn from_line(line: &str) -> Option<Self> {
-        let v: Vec<f64> = line
-            .split_whitespace()
-            .map(|x| x.parse().ok())
-            .collect::<Option<_>>()?;
-        let [vertices, faces, genus, read, factor, map, write, total, reference, peak_rss_mib, zeros, folds_outside] =
-            <[f64; FIELDS]>::try_from(v).ok()?;
-        Some(Self {
-            vertices,
-            faces,
-            genus,
-            read,
-            factor,
-            map,
-            write,
-            total,
-            reference,
-            peak_rss_mib,
-            zeros,
-            folds_outside,
-        })
-    }
-
+impl Row for GlobalRow {
     /// The whole run over one factorization.
-    pub fn ratio(&self) -> f64 {
+    fn ratio(&self) -> f64 {
         self.total / self.reference
     }
+}
 
-    /// The run of median ratio, with the smallest and largest ratio.
-    pub fn median(rows: &[Self]) -> Option<(Self, f64, f64)> {
-        let mut sorted: Vec<&Self> = rows.iter().collect();
-        sorted.sort_by(|a, b| a.ratio().total_cmp(&b.ratio()));
-        let (lo, hi) = (sorted.first()?.ratio(), sorted.last()?.ratio());
-        Some((sorted[sorted.len() / 2].clone(), lo, hi))
-    }
-
+impl GlobalRow {
     /// The Markdown header.
     pub fn header() -> String {
         "| mesh | V | F | g | read | factor (in map) | global_map | write | total | one factorization | total / factorization (min–max) | map / factorization | peak RSS MiB | zeros | folds outside zeros |\n\

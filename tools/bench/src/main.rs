@@ -17,11 +17,13 @@
 
 mod generate;
 mod global_row;
+mod row;
 mod stages;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use crate::row::Row;
 use crate::stages::StageRow;
 
 fn usage() -> ! {

@@ -29,135 +29,50 @@ use conformap_disk::{
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_operators::{Cholesky, CholeskyOptions, Ordering};
 
-/// Stage times (ms) and sizes of one run.
-#[derive(Debug, Clone, Default)]
-pub struct StageRow {
-    vertices: f64,
-    faces: f64,
-    boundary: f64,
-    read: f64,
-    assemble: f64,
-    analyse: f64,
-    factor: f64,
-    schur: f64,
-    start: f64,
-    iterations: f64,
-    finish: f64,
-    iterate: f64,
-    metrics: f64,
-    write: f64,
-    solver: f64,
-    total: f64,
-    reference: f64,
-    peak_rss_mib: f64,
-    energy: f64,
-    steps: f64,
-    flipped: f64,
-    /// 1 when `L_II` was ordered by nested dissection, 0 for AMD.
-    nested: f64,
-    /// Size of the input file, MB (10⁶ bytes), for the read column's MB/s.
-    read_mb: f64,
-    /// Size of the written OBJ, MB, for the write column's MB/s.
-    write_mb: f64,
+use crate::row::{row_struct, Row};
+
+row_struct! {
+    /// Stage times (ms) and sizes of one run.
+    #[derive(Debug, Clone, Default)]
+    pub struct StageRow {
+        vertices,
+        faces,
+        boundary,
+        read,
+        assemble,
+        analyse,
+        factor,
+        schur,
+        start,
+        iterations,
+        finish,
+        iterate,
+        metrics,
+        write,
+        solver,
+        total,
+        reference,
+        peak_rss_mib,
+        energy,
+        steps,
+        flipped,
+        /// 1 when `L_II` was ordered by nested dissection, 0 for AMD.
+        nested,
+        /// Size of the input file, MB (10⁶ bytes), for the read column's MB/s.
+        read_mb,
+        /// Size of the written OBJ, MB, for the write column's MB/s.
+        write_mb,
+    }
 }
 
-const FIELDS: usize = 24;
-
-impl StageRow {
-    fn values(&self) -> [f64; FIELDS] {
-        [
-            self.vertices,
-            self.faces,
-            self.boundary,
-            self.read,
-            self.assemble,
-            self.analyse,
-            self.factor,
-            self.schur,
-            self.start,
-            self.iterations,
-            self.finish,
-            self.iterate,
-            self.metrics,
-            self.write,
-            self.solver,
-            self.total,
-            self.reference,
-            self.peak_rss_mib,
-            self.energy,
-            self.steps,
-            self.flipped,
-            self.nested,
-            self.read_mb,
-            self.write_mb,
-        ]
-    }
-
-    fn from_values(v: &[f64]) -> Self {
-        Self {
-            vertices: v[0],
-            faces: v[1],
-            boundary: v[2],
-            read: v[3],
-            assemble: v[4],
-            analyse: v[5],
-            factor: v[6],
-            schur: v[7],
-            start: v[8],
-            iterations: v[9],
-            finish: v[10],
-            iterate: v[11],
-            metrics: v[12],
-            write: v[13],
-            solver: v[14],
-            total: v[15],
-            reference: v[16],
-            peak_rss_mib: v[17],
-            energy: v[18],
-            steps: v[19],
-            flipped: v[20],
-            nested: v[21],
-            read_mb: v[22],
-            write_mb: v[23],
-        }
-    }
-
-    /// One line for the child → parent pipe.
-    pub fn to_line(&self) -> String {
-        self.values()
-            .iter()
-            .map(|v| format!("{v:e}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    }
-
-    /// Parses [`Self::to_line`].
-    pub fn from_line(line: &str) -> Option<Self> {
-        let v: Vec<f64> = line
-            .split_whitespace()
-            .filter_map(|t| t.parse().ok())
-            .collect();
-        (v.len() == FIELDS).then(|| Self::from_values(&v))
-    }
-
+impl Row for StageRow {
     /// The solver time as a multiple of one factorization of `L_II`.
-    pub fn ratio(&self) -> f64 {
+    fn ratio(&self) -> f64 {
         self.solver / self.reference.max(1e-9)
     }
+}
 
-    /// The run of median ratio (a whole run, so that its stages add up), its ratio, and
-    /// the smallest and largest ratio over the runs.
-    pub fn median(rows: &[Self]) -> Option<(Self, f64, f64)> {
-        if rows.is_empty() {
-            return None;
-        }
-        let mut sorted: Vec<&Self> = rows.iter().collect();
-        sorted.sort_by(|a, b| a.ratio().total_cmp(&b.ratio()));
-        let lo = sorted[0].ratio();
-        let hi = sorted[sorted.len() - 1].ratio();
-        Some((sorted[sorted.len() / 2].clone(), lo, hi))
-    }
-
+impl StageRow {
     /// The Markdown header.
     pub fn header() -> String {
         "| mesh | V | F | n_B | ordering | read (MB/s) | assemble | analyse | factor | iterate (schur + start + iterations + finish) | metrics | write (MB/s) | solver | total | one factorization | solver / factorization (min–max) | peak RSS MiB | E_C | CCEM iterations |\n\

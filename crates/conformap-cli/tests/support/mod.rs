@@ -58,3 +58,58 @@ pub fn stderr(o: &Output) -> String {
 pub fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).expect("read json")).expect("parse json")
 }
+
+/// Runs `conformap ARGS…` and asserts that it succeeds (its stderr in the failure message).
+pub fn conformap_ok(args: &[&str]) -> Output {
+    let o = conformap(args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    o
+}
+
+/// Runs `conformap ARGS… -o OUT [--flat FLAT] --report REPORT`, asserts that it succeeds and
+/// returns the report.
+pub fn map_report(
+    args: &[&str],
+    out: &Path,
+    flat: Option<&Path>,
+    report: &Path,
+) -> serde_json::Value {
+    let mut all = args.to_vec();
+    all.extend(["-o", s(out)]);
+    if let Some(flat) = flat {
+        all.extend(["--flat", s(flat)]);
+    }
+    all.extend(["--report", s(report)]);
+    conformap_ok(&all);
+    json(report)
+}
+
+/// `conformap mobius MESH PARAM --domain DOMAIN --objective OBJECTIVE EXTRA… -o OUT`, not
+/// checked (the caller asserts its exit code).
+pub fn mobius(
+    mesh: &Path,
+    param: &Path,
+    domain: &str,
+    objective: &str,
+    extra: &[&str],
+    out: &Path,
+) -> Output {
+    let mut args = vec![
+        "mobius",
+        s(mesh),
+        s(param),
+        "--domain",
+        domain,
+        "--objective",
+        objective,
+    ];
+    args.extend(extra);
+    args.extend(["-o", s(out)]);
+    conformap(&args)
+}
+
+/// `conformap metrics MESH MAP --json`, asserted to succeed, parsed.
+pub fn metrics_json(mesh: &Path, map: &Path) -> serde_json::Value {
+    let o = conformap_ok(&["metrics", s(mesh), s(map), "--json"]);
+    serde_json::from_slice(&o.stdout).expect("metrics --json")
+}

@@ -3,6 +3,7 @@
 
 use crate::ccem::schur::SchurMode;
 use crate::cem::CemOptions;
+use crate::options::{at_least_one, finite_non_negative, invalid, with_setters};
 use crate::DiskError;
 
 /// The descent direction of CCEM.
@@ -142,25 +143,10 @@ impl CcemOptions {
         banded_hessian_min_nb: 2000,
     };
 
-    /// Sets [`Self::variant`].
-    #[must_use]
-    pub fn with_variant(mut self, variant: CcemVariant) -> Self {
-        self.variant = variant;
-        self
-    }
-
-    /// Sets [`Self::max_iter`].
-    #[must_use]
-    pub fn with_max_iter(mut self, max_iter: usize) -> Self {
-        self.max_iter = max_iter;
-        self
-    }
-
-    /// Sets [`Self::tol`].
-    #[must_use]
-    pub fn with_tol(mut self, tol: f64) -> Self {
-        self.tol = tol;
-        self
+    with_setters! {
+        with_variant(variant: CcemVariant);
+        with_max_iter(max_iter: usize);
+        with_tol(tol: f64);
     }
 
     /// Sets the Wolfe constants [`Self::gamma1`] and [`Self::gamma2`].
@@ -171,67 +157,16 @@ impl CcemOptions {
         self
     }
 
-    /// Sets [`Self::rho`].
-    #[must_use]
-    pub fn with_rho(mut self, rho: f64) -> Self {
-        self.rho = rho;
-        self
-    }
-
-    /// Sets [`Self::min_gap`].
-    #[must_use]
-    pub fn with_min_gap(mut self, min_gap: f64) -> Self {
-        self.min_gap = min_gap;
-        self
-    }
-
-    /// Sets [`Self::max_line_evals`].
-    #[must_use]
-    pub fn with_max_line_evals(mut self, evals: usize) -> Self {
-        self.max_line_evals = evals;
-        self
-    }
-
-    /// Sets [`Self::schur`].
-    #[must_use]
-    pub fn with_schur(mut self, schur: SchurMode) -> Self {
-        self.schur = schur;
-        self
-    }
-
-    /// Sets [`Self::start`].
-    #[must_use]
-    pub fn with_start(mut self, start: CcemStart) -> Self {
-        self.start = start;
-        self
-    }
-
-    /// Sets [`Self::qn_memory`].
-    #[must_use]
-    pub fn with_qn_memory(mut self, memory: usize) -> Self {
-        self.qn_memory = memory;
-        self
-    }
-
-    /// Sets [`Self::hessian_preconditioner`].
-    #[must_use]
-    pub fn with_hessian_preconditioner(mut self, on: bool) -> Self {
-        self.hessian_preconditioner = on;
-        self
-    }
-
-    /// Sets [`Self::banded_hessian_min_nb`].
-    #[must_use]
-    pub fn with_banded_hessian_min_nb(mut self, n: usize) -> Self {
-        self.banded_hessian_min_nb = n;
-        self
-    }
-
-    /// Sets [`Self::record_steps`].
-    #[must_use]
-    pub fn with_record_steps(mut self, record: bool) -> Self {
-        self.record_steps = record;
-        self
+    with_setters! {
+        with_rho(rho: f64);
+        with_min_gap(min_gap: f64);
+        with_max_line_evals(max_line_evals: usize);
+        with_schur(schur: SchurMode);
+        with_start(start: CcemStart);
+        with_qn_memory(qn_memory: usize);
+        with_hessian_preconditioner(hessian_preconditioner: bool);
+        with_banded_hessian_min_nb(banded_hessian_min_nb: usize);
+        with_record_steps(record_steps: bool);
     }
 
     /// Checks the ranges: `tol ≥ 0`, `0 < γ₁ < γ₂ < 1`, `0 < ρ ≤ 1`, `min_gap ≥ 0`,
@@ -240,25 +175,15 @@ impl CcemOptions {
     /// # Errors
     /// [`DiskError::InvalidOption`] naming the option.
     pub fn validate(&self) -> Result<(), DiskError> {
-        let bad = |name: &'static str, reason: &'static str| {
-            Err(DiskError::InvalidOption { name, reason })
-        };
-        if !(self.tol >= 0.0 && self.tol.is_finite()) {
-            return bad("tol", "must be a finite number ≥ 0");
-        }
+        finite_non_negative("tol", self.tol)?;
         if !(self.gamma1 > 0.0 && self.gamma1 < self.gamma2 && self.gamma2 < 1.0) {
-            return bad("gamma1/gamma2", "need 0 < gamma1 < gamma2 < 1");
+            return invalid("gamma1/gamma2", "need 0 < gamma1 < gamma2 < 1");
         }
         if !(self.rho > 0.0 && self.rho <= 1.0) {
-            return bad("rho", "need 0 < rho ≤ 1");
+            return invalid("rho", "need 0 < rho ≤ 1");
         }
-        if !(self.min_gap >= 0.0 && self.min_gap.is_finite()) {
-            return bad("min_gap", "must be a finite number ≥ 0");
-        }
-        if self.max_line_evals == 0 {
-            return bad("max_line_evals", "must be at least 1");
-        }
-        Ok(())
+        finite_non_negative("min_gap", self.min_gap)?;
+        at_least_one("max_line_evals", self.max_line_evals)
     }
 }
 

@@ -99,21 +99,8 @@ impl Bfgs {
 
     /// `−H g` (Algorithm 4.2, step 10).
     pub fn direction(&self, g: &[f64]) -> Vec<f64> {
-        let mut q: Vec<f64> = g.to_vec();
-        let mut alphas = Vec::with_capacity(self.pairs.len());
-        for (s, y, rho) in self.pairs.iter().rev() {
-            let a = rho * dot(s, &q);
-            q.iter_mut().zip(y).for_each(|(qi, yi)| *qi -= a * yi);
-            alphas.push(a);
-        }
         let gamma = self.gamma.unwrap_or(1.0);
-        q.iter_mut().for_each(|x| *x *= gamma);
-        for ((s, y, rho), a) in self.pairs.iter().zip(alphas.iter().rev()) {
-            let b = rho * dot(y, &q);
-            q.iter_mut().zip(s).for_each(|(qi, si)| *qi += (a - b) * si);
-        }
-        q.iter_mut().for_each(|x| *x = -*x);
-        q
+        self.direction_with(g, |q| q.iter_mut().for_each(|x| *x *= gamma))
     }
 }
 

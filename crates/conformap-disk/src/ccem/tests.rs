@@ -2,7 +2,6 @@
 //! energy of the reconstructed map, the analytic gradient and the quadratic model against
 //! finite differences, and the two Schur-complement paths against each other.
 
-use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 use crate::angles::unwrap_boundary;
@@ -12,23 +11,7 @@ use crate::initial::arc_length_boundary;
 use crate::{cem, CemOptions, DiskProblem};
 
 /// Reads a committed fixture (`<workspace>/fixtures/<name>`, plain `v`/`f` OBJ).
-pub(crate) fn fixture(name: &str) -> TriMesh {
-    let path = format!("{}/../../fixtures/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut pos = Vec::new();
-    let mut faces = Vec::new();
-    for line in text.lines() {
-        let t: Vec<&str> = line.split_whitespace().collect();
-        let num = |k: usize| t[k].parse::<f64>().expect("coordinate");
-        let idx = |k: usize| t[k].parse::<u32>().expect("index") - 1;
-        match t.first() {
-            Some(&"v") => pos.push([num(1), num(2), num(3)]),
-            Some(&"f") => faces.push([idx(1), idx(2), idx(3)]),
-            _ => {}
-        }
-    }
-    TriMesh::try_new(pos, faces).expect("valid fixture")
-}
+pub(crate) use conformap_testkit::fixture_mesh as fixture;
 
 /// Boundary angles of the CEM map of a problem (a realistic, non-trivial point).
 fn cem_angles(problem: &mut DiskProblem<'_>) -> Vec<f64> {

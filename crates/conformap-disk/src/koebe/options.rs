@@ -1,5 +1,6 @@
 //! Options and errors of [`crate::koebe`], each option with its default and why.
 
+use crate::options::{at_least_one, finite_non_negative, finite_positive, with_setters};
 use crate::{CemOptions, DiskError};
 
 /// Options of [`crate::koebe`].
@@ -56,25 +57,10 @@ impl KoebeOptions {
         polish: true,
     };
 
-    /// Sets [`Self::outer`].
-    #[must_use]
-    pub fn with_outer(mut self, outer: Option<usize>) -> Self {
-        self.outer = outer;
-        self
-    }
-
-    /// Sets [`Self::tol`].
-    #[must_use]
-    pub fn with_tol(mut self, tol: f64) -> Self {
-        self.tol = tol;
-        self
-    }
-
-    /// Sets [`Self::max_sweeps`].
-    #[must_use]
-    pub fn with_max_sweeps(mut self, max_sweeps: usize) -> Self {
-        self.max_sweeps = max_sweeps;
-        self
+    with_setters! {
+        with_outer(outer: Option<usize>);
+        with_tol(tol: f64);
+        with_max_sweeps(max_sweeps: usize);
     }
 
     /// Sets [`Self::newton_max_iter`] and [`Self::newton_step_tol`].
@@ -85,18 +71,9 @@ impl KoebeOptions {
         self
     }
 
-    /// Sets [`Self::initial`].
-    #[must_use]
-    pub fn with_initial(mut self, initial: CemOptions) -> Self {
-        self.initial = initial;
-        self
-    }
-
-    /// Sets [`Self::polish`].
-    #[must_use]
-    pub fn with_polish(mut self, polish: bool) -> Self {
-        self.polish = polish;
-        self
+    with_setters! {
+        with_initial(initial: CemOptions);
+        with_polish(polish: bool);
     }
 
     /// Checks the ranges: `tol ≥ 0` and finite, `max_sweeps ≥ 1`, `newton_max_iter ≥ 1`,
@@ -105,22 +82,10 @@ impl KoebeOptions {
     /// # Errors
     /// [`DiskError::InvalidOption`] naming the option.
     pub fn validate(&self) -> Result<(), DiskError> {
-        let bad = |name: &'static str, reason: &'static str| {
-            Err(DiskError::InvalidOption { name, reason })
-        };
-        if !(self.tol >= 0.0 && self.tol.is_finite()) {
-            return bad("tol", "must be a finite number ≥ 0");
-        }
-        if self.max_sweeps == 0 {
-            return bad("max_sweeps", "must be at least 1");
-        }
-        if self.newton_max_iter == 0 {
-            return bad("newton_max_iter", "must be at least 1");
-        }
-        if !(self.newton_step_tol > 0.0 && self.newton_step_tol.is_finite()) {
-            return bad("newton_step_tol", "must be a finite number > 0");
-        }
-        Ok(())
+        finite_non_negative("tol", self.tol)?;
+        at_least_one("max_sweeps", self.max_sweeps)?;
+        at_least_one("newton_max_iter", self.newton_max_iter)?;
+        finite_positive("newton_step_tol", self.newton_step_tol)
     }
 }
 

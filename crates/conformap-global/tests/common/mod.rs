@@ -1,7 +1,12 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use conformap_global::{
+    optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusObjective, MobiusOptions,
+    MobiusReport, SphereMobius,
+};
 use conformap_mesh::TriMesh;
+use num_complex::Complex64;
 
 /// A deterministic pseudo-random stream in [0, 1) (64-bit LCG, Knuth's constants), so the
 /// "random" cases are the same on every run.
@@ -23,10 +28,41 @@ impl Lcg {
 }
 
 pub fn read(name: &str) -> Option<TriMesh> {
-    let path = conformap_testkit::real_mesh_or_skip(name, name)?;
-    Some(conformap_testkit::read_plain_obj(&path).expect("fixture reads"))
+    conformap_testkit::read_real_mesh_or_skip(name, name)
 }
 
 pub fn norm(p: [f64; 3]) -> f64 {
     (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
+}
+
+/// A sphere map moved by its most uniform Möbius transformation (default options).
+pub fn uniform_sphere(mesh: &TriMesh, points: &[[f64; 3]]) -> SphereMobius {
+    optimize_sphere_mobius(
+        mesh,
+        points,
+        &MobiusObjective::Uniform,
+        &MobiusOptions::DEFAULT,
+    )
+    .expect("sphere Möbius optimization")
+}
+
+/// A disk map moved by its most uniform automorphism of the disk (default options).
+pub fn uniform_disk(mesh: &TriMesh, map: &[Complex64]) -> DiskMobius {
+    optimize_disk_mobius(
+        mesh,
+        map,
+        &MobiusObjective::Uniform,
+        &MobiusOptions::DEFAULT,
+    )
+    .expect("disk Möbius optimization")
+}
+
+/// Asserts that the optimization lowered the uniformity energy (`what` names the case).
+pub fn assert_more_uniform(r: &MobiusReport, what: &str) {
+    assert!(
+        r.uniformity_after < r.uniformity_before,
+        "{what}: {} -> {}",
+        r.uniformity_before,
+        r.uniformity_after
+    );
 }

@@ -131,7 +131,7 @@ fn par_for(work: usize, par: Par) -> Par {
 }
 
 /// Which panels the columns of `R` reach: the symbolic half of [`inverse_gram`].
-struct Plan<'a> {
+pub(super) struct Plan<'a> {
     panels: Panels<'a>,
     /// First column of every panel, and `n` at the end.
     start: Vec<usize>,
@@ -144,7 +144,9 @@ struct Plan<'a> {
 }
 
 impl<'a> Plan<'a> {
-    fn new(
+    /// Which panels each column of `r` reaches. `perm_inv[i]` is the position of row `i`
+    /// of `A` in the elimination order; `r` must be CSC with `A`'s number of rows.
+    pub(super) fn new(
         symbolic: &'a SymbolicCholesky<usize>,
         values: &'a [f64],
         perm_inv: &[usize],
@@ -194,7 +196,7 @@ impl<'a> Plan<'a> {
 
     /// Multiply–adds of the numeric pass: per panel of width `w` reached by `m` columns
     /// with `p` rows below, `w²m/2` (triangular solve) + `wm²/2` (`WᵀW`) + `pwm` (update).
-    fn multiply_adds(&self) -> f64 {
+    pub(super) fn multiply_adds(&self) -> f64 {
         (0..self.panels.len())
             .filter(|&p| !self.sets[p].is_empty())
             .map(|p| {
@@ -210,14 +212,20 @@ impl<'a> Plan<'a> {
     }
 }
 
-/// The multiply–adds [`inverse_gram`] would spend (its symbolic pass only).
-pub(super) fn inverse_gram_cost(
-    symbolic: &SymbolicCholesky<usize>,
-    values: &[f64],
-    perm_inv: &[usize],
-    r: &CsMat<f64>,
-) -> f64 {
-    Plan::new(symbolic, values, perm_inv, r).multiply_adds()
+/// The lower triangle of `XᵀX` added to (`Accum::Add`) or written into (`Accum::Replace`)
+/// `dst`.
+fn lower_gram(dst: MatMut<'_, f64>, accum: Accum, x: MatRef<'_, f64>, par: Par) {
+    triangular::matmul(
+        dst,
+        BlockStructure::TriangularLower,
+        accum,
+        x.transpose(),
+        BlockStructure::Rectangular,
+        x,
+        BlockStructure::Rectangular,
+        1.0,
+        par,
+    );
 }
 
 /// The multiply–adds of the numeric factorization (see `Cholesky::factor_cost`).
@@ -236,15 +244,9 @@ pub(super) fn factor_cost(symbolic: &SymbolicCholesky<usize>, values: &[f64]) ->
         .sum()
 }
 
-/// `Rᵀ A⁻¹ R` from the factor of `A` (see the module docs). `perm_inv[i]` is the position
-/// of row `i` of `A` in the elimination order. `r` must be CSC with `A`'s number of rows.
-pub(super) fn inverse_gram(
-    symbolic: &SymbolicCholesky<usize>,
-    values: &[f64],
-    perm_inv: &[usize],
-    r: &CsMat<f64>,
-    par: Par,
-) -> InverseGram {
+/// `Rᵀ A⁻¹ R` from the factor of `A` (see the module docs), `R` of `k` columns given by
+/// its [`Plan`].
+pub(super) fn inverse_gram(plan: Plan<'_>, k: usize, par: Par) -> InverseGram {
     let t0 = std::time::Instant::now();
     let Plan {
         panels,
@@ -252,9 +254,8 @@ pub(super) fn inverse_gram(
         owner,
         direct,
         sets,
-    } = Plan::new(symbolic, values, perm_inv, r);
+    } = plan;
     let np = panels.len();
-    let k = r.cols();
     let mut gram = vec![0.0; k * k];
     // rows of W of panels not yet reached, allocated on their first update
     let mut pending: Vec<Vec<f64>> = vec![Vec::new(); np];
@@ -294,32 +295,12 @@ pub(super) fn inverse_gram(
         if m == k {
             // every column of R passes here (set = 0..k): straight into the result
             let dst = MatMut::from_column_major_slice_mut(&mut gram, k, k);
-            triangular::matmul(
-                dst,
-                BlockStructure::TriangularLower,
-                Accum::Add,
-                xr.transpose(),
-                BlockStructure::Rectangular,
-                xr,
-                BlockStructure::Rectangular,
-                1.0,
-                gram_par,
-            );
+            lower_gram(dst, Accum::Add, xr, gram_par);
         } else {
             local_gram.clear();
             local_gram.resize(m * m, 0.0);
             let dst = MatMut::from_column_major_slice_mut(&mut local_gram, m, m);
-            triangular::matmul(
-                dst,
-                BlockStructure::TriangularLower,
-                Accum::Replace,
-                xr.transpose(),
-                BlockStructure::Rectangular,
-                xr,
-                BlockStructure::Rectangular,
-                1.0,
-                gram_par,
-            );
+            lower_gram(dst, Accum::Replace, xr, gram_par);
             for b in 0..m {
                 let cb = set[b] as usize;
                 let src = &local_gram[b * m..(b + 1) * m];
