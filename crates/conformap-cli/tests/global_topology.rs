@@ -1,4 +1,5 @@
 //! `conformap global --topology-opt` on spot (closed genus 0) and on a compact ellipsoid.
+#![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
 mod support;
 
