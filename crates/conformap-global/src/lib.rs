@@ -22,6 +22,9 @@
 //!   [`double_cover_disk_map`] — a second route to the disk map, independent of CEM.
 //! - Energies on their own: [`sphere_uniformity_energy`], [`disk_uniformity_energy`],
 //!   [`sphere_region_share`], [`disk_region_share`], [`region_mask`].
+//! - **Topological optimization** (§3.5): [`topology_opt`] slits the surface at the
+//!   extreme points of its map and maps the slit surface by its most uniform holomorphic
+//!   form, greedily, returning the best layout seen ([`TopologyOpt`], [`TopologyOptOptions`]).
 //! - [`GlobalError`]: the one error type.
 //!
 //! # Example
@@ -51,6 +54,7 @@ mod mobius;
 mod sphere;
 mod stats;
 mod stereo;
+mod topology_opt;
 
 #[doc(hidden)]
 pub mod doc_support;
@@ -94,6 +98,12 @@ pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
 pub use stereo::{
     equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
     inverse_stereographic_south, stereographic, stereographic_south,
+};
+pub use topology_opt::{
+    topology_opt, BestLayout, SlitRecord, TopologyOpt, TopologyOptOptions, TopologyStep,
+    CENTRE_CANDIDATES, DEFAULT_EXTREME_AREA_FRACTION, DEFAULT_MAX_EXTREME_AREA_RATIO,
+    DEFAULT_MAX_SLITS, DEFAULT_PATIENCE, DEFAULT_SLIT_LENGTH, FIRST_STEP_RELAXATIONS,
+    TOPOLOGY_BASIS_STARTS, TOPOLOGY_RANDOM_STARTS,
 };
 
 /// The README's example, compiled and run as a doctest.

@@ -155,4 +155,18 @@ pub enum MeshError {
         /// Boundary loops.
         boundaries: usize,
     },
+    /// A slit (a path of vertices to cut along) is not usable: fewer than two edges,
+    /// consecutive vertices not joined by an edge, a repeated vertex, a vertex on or next to
+    /// the boundary or another slit, or an edge between two non-consecutive slit vertices (a
+    /// chord: both its ends would become boundary vertices). Fix: choose another centre or
+    /// a shorter slit ([`crate::SlitPlanner::propose`] builds valid ones).
+    #[error("slit {slit} is not usable at vertex {vertex}: {reason}")]
+    InvalidSlit {
+        /// Index of the slit in the list given.
+        slit: usize,
+        /// The offending vertex.
+        vertex: u32,
+        /// What is wrong.
+        reason: &'static str,
+    },
 }

@@ -25,6 +25,7 @@
 mod error;
 mod holes;
 mod repair;
+mod slit;
 mod surgery;
 mod topology;
 mod trimesh;
@@ -32,6 +33,7 @@ mod trimesh;
 pub use error::MeshError;
 pub use holes::{centroid_fan_faces, fill_all_holes_except};
 pub use repair::{repair, RepairLog, RepairOptions, Repaired, DROPPED};
+pub use slit::{cut_slits, SlitMesh, SlitPlanner};
 pub use surgery::{fill_holes, FilledMesh};
 #[doc(hidden)]
 pub use topology::doc_torus;

@@ -248,6 +248,15 @@ impl RepairLog {
                 vertex: v(vertex),
                 faces,
             },
+            E::InvalidSlit {
+                slit,
+                vertex,
+                reason,
+            } => E::InvalidSlit {
+                slit,
+                vertex: vi(vertex),
+                reason,
+            },
         }
     }
 }

@@ -91,6 +91,19 @@ pub struct GlobalArgs {
     /// Root vertex of the homology generators' shortest-path tree (0-based). Default 0.
     #[arg(long, value_name = "V")]
     pub root: Option<usize>,
+    /// Topological optimization (Jin et al. §3.5): slit the surface at the extreme points
+    /// of its map (limb tips) and map the slit surface by its most uniform form, greedily;
+    /// returns the most uniform layout seen, the starting map included. Also takes closed
+    /// genus-0 meshes (the starting map is then the uniform-Möbius sphere map).
+    #[arg(long)]
+    pub topology_opt: bool,
+    /// Most slits of `--topology-opt`. Default: the library's (16).
+    #[arg(long, value_name = "N", requires = "topology_opt")]
+    pub max_slits: Option<usize>,
+    /// Slit length of `--topology-opt` as a fraction of the bounding-box diagonal.
+    /// Default: the library's (0.04).
+    #[arg(long, value_name = "F", requires = "topology_opt")]
+    pub slit_length: Option<f64>,
 }
 
 impl GlobalArgs {
@@ -151,6 +164,9 @@ impl MapCommand for GlobalArgs {
     }
 
     fn check_usage(&self) -> Result<(), Failure> {
+        if self.topology_opt {
+            crate::commands::global_topology::check_usage(self)?;
+        }
         let regional = matches!(
             self.objective,
             FormObjective::Emphasize | FormObjective::DeEmphasize
@@ -183,7 +199,7 @@ impl MapCommand for GlobalArgs {
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
         // one factorization of the Laplacian of the surface the forms live on: the input,
         // or its double covering (twice the vertices and edges)
-        let copies = if mesh.boundary_loops().is_empty() {
+        let copies = if mesh.boundary_loops().is_empty() && !self.topology_opt {
             1
         } else {
             2
@@ -215,9 +231,24 @@ impl MapCommand for GlobalArgs {
             Some(path) => read_region(path, mesh.num_faces())?,
             None => Vec::new(),
         };
+        if self.topology_opt {
+            return crate::commands::global_topology::solve(self, input);
+        }
         let fail = |e: conformap_global::GlobalError| input.fail(e.into());
         let map = global_map(mesh, &self.options(region)).map_err(fail)?;
         let seamed = map.seamed_layout(mesh).map_err(fail)?;
+        map_solved(mesh, &map, seamed)
+    }
+}
+
+/// What `global` returns for the map `map` of `mesh` (the input, whose faces the layout's
+/// corners follow) and its seamed layout.
+pub(crate) fn map_solved(
+    mesh: &TriMesh,
+    map: &GlobalMap,
+    seamed: SeamedLayout,
+) -> Result<Solved, Failure> {
+    {
         let t = std::time::Instant::now();
         let written = seamed.mesh.as_ref().unwrap_or(mesh);
         let base = corner_map_metrics(written, &seamed.corner_values(), &MetricsOptions::DEFAULT)?;
@@ -236,7 +267,7 @@ impl MapCommand for GlobalArgs {
             .with("folds_outside_zeros", folds_outside_zeros)
             .with("conformal_factor_range", [cf_min, cf_max]);
         let mut sections = serde_json::Map::new();
-        sections.insert("global".to_string(), global_section(&map, &seamed));
+        sections.insert("global".to_string(), global_section(map, &seamed));
         sections.insert(
             "factorization".to_string(),
             json!({"dim": map.factor_dim, "nnz_factor": map.factor_nnz}),
@@ -251,7 +282,7 @@ impl MapCommand for GlobalArgs {
         let tm = &map.timings_ms;
         Ok(Solved {
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
-            summary: summary(mesh, &map, folds_at_zeros, folds_outside_zeros),
+            summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros),
             strict_violation: (folds_outside_zeros > 0).then(|| {
                 format!("{folds_outside_zeros} folded faces lie outside the zeros' clusters")
             }),

@@ -14,6 +14,7 @@ mod tree_cotree;
 
 pub use cut::{cut_graph, cut_mesh, CutMesh};
 pub use edges::EdgeIndex;
+pub(crate) use tree_cotree::UnionFind;
 pub use tree_cotree::{homology_basis, Generator, HomologyBasis};
 
 use crate::trimesh::TriMesh;

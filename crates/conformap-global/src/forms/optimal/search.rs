@@ -36,6 +36,13 @@ pub struct FormSearchOptions {
     pub starts: usize,
     /// Seed of the start generator. Default [`DEFAULT_SEED`].
     pub seed: u64,
+    /// Start from at most this many basis forms, those of lowest energy (ties by index).
+    /// Default `None`: all `2g`, so the optimum is never worse than a basis form (which
+    /// holds for any `Some(k ≥ 1)` too: the best basis form is always a start). At high
+    /// genus every start costs `O(g⁴)` per Newton step; the topological optimization
+    /// (genus up to 20 and more) keeps a few.
+    #[serde(default)]
+    pub basis_starts: Option<usize>,
     /// Also search the opposite extreme (the least uniform form for `Uniform`, the most
     /// uniform for `LeastUniform`) and report the ratio max/min. Default `true`.
     pub compare: bool,
@@ -46,6 +53,7 @@ impl FormSearchOptions {
     pub const DEFAULT: Self = Self {
         starts: DEFAULT_STARTS,
         seed: DEFAULT_SEED,
+        basis_starts: None,
         compare: true,
     };
 
@@ -60,6 +68,13 @@ impl FormSearchOptions {
     #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
+        self
+    }
+
+    /// Sets [`Self::basis_starts`].
+    #[must_use]
+    pub fn with_basis_starts(mut self, basis_starts: Option<usize>) -> Self {
+        self.basis_starts = basis_starts;
         self
     }
 
@@ -153,6 +168,16 @@ pub fn multistart(
             p.whiten(&e)
         })
         .collect();
+    if let Some(keep) = options.basis_starts.filter(|&k| k < n) {
+        let sign = if maximize { -1.0 } else { 1.0 };
+        let value: Vec<f64> = starts.iter().map(|s| sign * moments.energy(s)).collect();
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&a, &b| value[a].total_cmp(&value[b]).then(a.cmp(&b)));
+        starts = order[..keep.max(1)]
+            .iter()
+            .map(|&k| starts[k].clone())
+            .collect();
+    }
     starts.extend(random_directions(n, options.starts, options.seed));
     let results: Vec<LocalOptimum> = starts
         .par_iter()

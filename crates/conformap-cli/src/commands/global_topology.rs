@@ -1,0 +1,176 @@
+//! `conformap global MESH -o OUT --topology-opt [--max-slits N] [--slit-length F]`: the
+//! topological optimization of Jin et al. §3.5 (`conformap_global::topology_opt`).
+//!
+//! What `-o` gets depends on the layout returned (the most uniform one seen, the report's
+//! `topology_opt.returned`):
+//! - a slit surface's (or, genus ≥ 1, the input's own) global map: written as `global`
+//!   writes it — the input's vertices in the input's order, one `vt` per corner class
+//!   (`f v/vt`). The slit mesh has the input's faces in the input's order, so its per-corner
+//!   texture coordinates are the input's: the two sides of a slit simply get different `vt`;
+//!   `--flat` gets the slit surface's fundamental domain.
+//! - the starting sphere map (closed genus 0, when no slit paid): written as `sphere`
+//!   writes it — one `vt` per vertex, the equirectangular projection of the sphere point;
+//!   `--flat` the unit-sphere points.
+//!
+//! The report's `topology_opt` section lists every step (slits added with their centre and
+//! vertex path, genus of the double covering, energy and its ratio to the starting map's,
+//! log-area spread, folds, time and factorization time).
+
+use conformap_global::{
+    equirectangular_uv, sphere_metrics, topology_opt, BestLayout, TopologyOpt, TopologyOptOptions,
+};
+use serde_json::json;
+
+use crate::commands::global::{map_solved, FormObjective, GlobalArgs};
+use crate::failure::Failure;
+use crate::pipeline::{Input, Solved};
+use crate::report::{MetricsSection, SolverSection, StageTimings};
+
+/// The flags `--topology-opt` does not combine with (exit 2).
+pub(crate) fn check_usage(args: &GlobalArgs) -> Result<(), Failure> {
+    let conflict = if args.objective != FormObjective::Uniform {
+        Some("--objective (the loop needs the most uniform form)")
+    } else if args.form.is_some() {
+        Some("--form")
+    } else {
+        None
+    };
+    if let Some(flag) = conflict {
+        return Err(Failure::Usage(format!(
+            "--topology-opt does not combine with {flag}"
+        )));
+    }
+    match args.slit_length {
+        Some(f) if !(f > 0.0 && f < 1.0) => Err(Failure::Usage(format!(
+            "--slit-length {f}: must lie in (0, 1) (a fraction of the bounding-box diagonal)"
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// The options `args` ask for.
+fn options(args: &GlobalArgs) -> TopologyOptOptions {
+    let mut o = TopologyOptOptions::DEFAULT;
+    let mut global = o.global.clone().with_root(args.root);
+    global = global.with_conjugate(args.options(Vec::new()).conjugate);
+    if let Some(s) = args.starts {
+        let search = global.search.with_starts(s);
+        global = global.with_search(search);
+    }
+    o = o.with_global(global);
+    if let Some(n) = args.max_slits {
+        o = o.with_max_slits(n);
+    }
+    if let Some(f) = args.slit_length {
+        o = o.with_slit_length(f);
+    }
+    o
+}
+
+/// Runs the loop and packs its best layout as `global` (or `sphere`) would.
+pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure> {
+    let mesh = &input.mesh;
+    let fail = |e: conformap_global::GlobalError| input.fail(e.into());
+    let options = options(args);
+    let r = topology_opt(mesh, &options).map_err(fail)?;
+    let best = &r.steps[r.best_step];
+    let start = &r.steps[0];
+    let (mut solved, returned) = match &r.best {
+        BestLayout::Global { map, slit } => {
+            let layout_mesh = slit.as_ref().map_or(mesh, |s| &s.mesh);
+            let seamed = map.seamed_layout(layout_mesh).map_err(fail)?;
+            let solved = map_solved(mesh, map, seamed)?;
+            let what = if slit.is_some() { "slits" } else { "input" };
+            (solved, what)
+        }
+        BestLayout::Sphere(points) => (sphere_solved(input, points, &r)?, "sphere"),
+        _ => {
+            return Err(input.fail(Failure::Numerical(
+                "unknown layout kind returned by the topological optimization".to_owned(),
+            )))
+        }
+    };
+    let slits: Vec<&Vec<u32>> = r.steps[1..=r.best_step]
+        .iter()
+        .flat_map(|s| s.added.iter().map(|a| &a.vertices))
+        .collect();
+    solved.sections.insert(
+        "topology_opt".to_string(),
+        json!({
+            "returned": returned,
+            "returned_is": "sphere: the starting uniform-Möbius sphere map (no slit paid); \
+                            input: the input's own most uniform form; slits: the global map \
+                            of the input cut along `slits`",
+            "best_step": r.best_step,
+            "start_energy": start.energy,
+            "best_energy": best.energy,
+            "ratio_to_start": best.energy / start.energy,
+            "slits": slits,
+            "slit_length": r.slit_length,
+            "slit_length_fraction": options.slit_length,
+            "max_slits": options.max_slits,
+            "patience": options.patience,
+            "stop": r.stop,
+            "steps": r.steps,
+            "total_ms": r.total_ms,
+        }),
+    );
+    solved.method = format!("topology-opt+{}", solved.method);
+    solved.summary = format!(
+        "topological optimization: {} step(s), best step {} with {} slit(s) (energy {:.3e}, \
+         {:.3}× the starting map's), returned {returned}; {}",
+        r.steps.len() - 1,
+        r.best_step,
+        best.slits,
+        best.energy,
+        best.energy / start.energy,
+        solved.summary
+    );
+    let factor: f64 = r.steps.iter().map(|s| s.factor_ms).sum();
+    solved.timings.factor = factor;
+    solved.timings.solve = (r.total_ms - factor - solved.timings.metrics).max(0.0);
+    Ok(solved)
+}
+
+/// The starting sphere map, as `sphere --mobius uniform` writes it.
+fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<Solved, Failure> {
+    let mesh = &input.mesh;
+    let t = std::time::Instant::now();
+    let m = sphere_metrics(mesh, points).map_err(|e| input.fail(e.into()))?;
+    let metrics_ms = crate::report::ms_since(t);
+    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
+    let solver = SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
+        "energy_history_is",
+        "uniformity energy of each step (step 0: the sphere map)",
+    );
+    let summary = format!(
+        "{} vertices, {} faces; uniform-Möbius sphere map (mean angle distortion {:.3}°, \
+         inverted faces {}, uniformity {:.3e})",
+        mesh.num_vertices(),
+        mesh.num_faces(),
+        m.angle_distortion_deg.mean,
+        m.flipped_faces,
+        m.uniformity_energy
+    );
+    let strict_violation =
+        (m.flipped_faces > 0).then(|| format!("{} faces inverted on the sphere", m.flipped_faces));
+    Ok(Solved {
+        method: "sphere+mobius-uniform".to_owned(),
+        uv: points
+            .iter()
+            .map(|&p| equirectangular_uv(p))
+            .collect::<Vec<_>>()
+            .into(),
+        flat: (points.to_vec(), None),
+        solver,
+        param: None,
+        sections: serde_json::Map::new(),
+        metrics: MetricsSection::sphere(m),
+        timings: StageTimings {
+            metrics: metrics_ms,
+            ..StageTimings::default()
+        },
+        strict_violation,
+        summary,
+    })
+}

@@ -1,0 +1,91 @@
+//! The topological-optimization table (issue 23) on the shared meshes
+//! (`../shared/meshes/`). Run in release:
+//!
+//! ```text
+//! cargo run --release -p conformap-global --example topology_table -- [MESH.obj ...] [--slit-length F] [--max-slits N]
+//! ```
+//! Per mesh: every step (slits added and their centres, genus of the double covering,
+//! uniformity energy and its ratio to the starting map's, log-area spread, folds, time as a
+//! multiple of the step's factorization).
+
+use conformap_global::{topology_opt, TopologyOptOptions};
+
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+fn main() -> Res {
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut options = TopologyOptOptions::DEFAULT;
+    let mut take = |flag: &str| -> Option<String> {
+        let i = args.iter().position(|a| a == flag)?;
+        let v = args.get(i + 1).cloned();
+        args.drain(i..(i + 2).min(args.len()));
+        v
+    };
+    if let Some(v) = take("--slit-length") {
+        options = options.with_slit_length(v.parse()?);
+    }
+    if let Some(v) = take("--max-slits") {
+        options = options.with_max_slits(v.parse()?);
+    }
+    if let Some(v) = take("--patience") {
+        options = options.with_patience(v.parse()?);
+    }
+    let mut search = options.global.search;
+    if let Some(v) = take("--starts") {
+        search = search.with_starts(v.parse()?);
+    }
+    if let Some(v) = take("--basis-starts") {
+        search = search.with_basis_starts(v.parse().ok());
+    }
+    options = options
+        .clone()
+        .with_global(options.global.clone().with_search(search));
+    let names = if args.is_empty() {
+        vec!["spot.obj".to_owned(), "armadillo.obj".to_owned()]
+    } else {
+        args
+    };
+    for name in names {
+        let Some(path) = conformap_testkit::shared_mesh_path(&name) else {
+            println!("{name}: not found");
+            continue;
+        };
+        let mesh = conformap_testkit::read_plain_obj(&path)?;
+        let r = topology_opt(&mesh, &options)?;
+        println!(
+            "{name}: V={} F={} slit length {:.4} ({} of diag); best step {}; stop: {}; total {:.0} ms",
+            mesh.num_vertices(),
+            mesh.num_faces(),
+            r.slit_length,
+            options.slit_length,
+            r.best_step,
+            r.stop,
+            r.total_ms
+        );
+        println!("step slits +added genus energy      ratio  logA_sd folds(z/out) time_ms factor_ms x_factor objective_ms  centres");
+        for (i, s) in r.steps.iter().enumerate() {
+            let centres: Vec<String> = s
+                .added
+                .iter()
+                .map(|a| format!("{}({})", a.centre, a.vertices.len() - 1))
+                .collect();
+            println!(
+                "{i:>4} {:>5} {:>6} {:>5} {:.4e} {:>6.3} {:>7.3} {:>4}/{:<4} {:>8.0} {:>8.0} {:>7.1} {:>8.0}  {}",
+                s.slits,
+                s.added.len(),
+                s.surface_genus,
+                s.energy,
+                s.ratio_to_start,
+                s.area_distortion_log.sd,
+                s.folds_at_zeros,
+                s.folds_outside_zeros,
+                s.time_ms,
+                s.factor_ms,
+                s.time_ms / s.factor_ms.max(1e-9),
+                s.objective_ms,
+                centres.join(" ")
+            );
+        }
+    }
+    Ok(())
+}

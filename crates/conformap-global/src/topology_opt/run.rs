@@ -1,0 +1,406 @@
+//! The greedy loop of the topological optimization (Jin et al. 2004, §3.5): map, find the
+//! extreme clusters, slit them all, map the slit surface by its most uniform holomorphic
+//! form, repeat; keep the best layout seen, the starting map included.
+
+use std::time::Instant;
+
+use conformap_mesh::{SlitMesh, SlitPlanner, Topology, TriMesh};
+use serde::{Deserialize, Serialize};
+
+use crate::forms::{global_map, GlobalMap};
+use crate::mobius::energy::{planar_signed_area, sphere_face_areas, surface_shares};
+use crate::mobius::optimize::optimize_sphere_mobius;
+use crate::mobius::options::{MobiusObjective, MobiusOptions};
+use crate::sphere::map::{sphere_map, SphereOptions};
+use crate::stats::log_ratio_stats;
+use crate::topology_opt::clusters::{
+    extreme_clusters, extreme_threshold, vertex_log_area_ratio, Cluster,
+};
+use crate::topology_opt::options::TopologyOptOptions;
+use crate::{GlobalError, LogRatioStats};
+
+/// Cluster vertices tried as a slit centre, nearest to the cluster's centre first: `8`.
+/// The nearest is the paper's extreme point; when it is blocked (next to an earlier slit)
+/// or no slit fits there, the next ones are tried before the cluster is given up.
+pub const CENTRE_CANDIDATES: usize = 8;
+
+/// Times the extreme-area fraction is doubled (and the area-ratio cap dropped) when the
+/// first step on a closed genus-0 surface finds one cluster only: `4` (up to 16× the
+/// fraction). One slit alone is useless: its double covering is a sphere again. With no
+/// cluster at all nothing is relaxed: the loop stops with the sphere map (on david_head the
+/// forced slits cost 22× and 245× the sphere map's energy).
+pub const FIRST_STEP_RELAXATIONS: usize = 4;
+
+/// One slit of a step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct SlitRecord {
+    /// The centre vertex (input numbering).
+    pub centre: u32,
+    /// The slit's vertex path (input numbering).
+    pub vertices: Vec<u32>,
+    /// Vertices of the extreme cluster it cuts.
+    pub cluster_vertices: usize,
+    /// Share of the surface area of that cluster.
+    pub cluster_area_fraction: f64,
+    /// Smallest log area ratio in the cluster.
+    pub cluster_min_log_ratio: f64,
+}
+
+/// One step of the loop (step 0: the starting map, no slit).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct TopologyStep {
+    /// The slits added at this step.
+    pub added: Vec<SlitRecord>,
+    /// Slits in all after this step.
+    pub slits: usize,
+    /// Genus of the closed surface the map lives on (0: the sphere map; the double
+    /// covering of the slit surface otherwise).
+    pub surface_genus: usize,
+    /// Uniformity energy `Σ_f (a_f/Σa − S_f/ΣS)²` over the input's faces.
+    pub energy: f64,
+    /// `energy` over the starting map's.
+    pub ratio_to_start: f64,
+    /// Log area distortion `log((a_f/Σa)/(S_f/ΣS))` over the unfolded input faces.
+    pub area_distortion_log: LogRatioStats,
+    /// Folded faces at zeros of the form.
+    pub folds_at_zeros: usize,
+    /// Folded faces elsewhere (inverted faces of a sphere map).
+    pub folds_outside_zeros: usize,
+    /// Wall-clock time of the step (clusters, cut, map), milliseconds.
+    pub time_ms: f64,
+    /// Time of the step's factorizations, milliseconds (the yardstick).
+    pub factor_ms: f64,
+    /// Time of the choice of the form (area products and the uniform search),
+    /// milliseconds.
+    pub objective_ms: f64,
+}
+
+/// The layout the loop returns.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub enum BestLayout {
+    /// The uniformity-optimal Möbius sphere map of a closed genus-0 input: one unit vector
+    /// per input vertex.
+    Sphere(Vec<[f64; 3]>),
+    /// A global map: of the input itself (genus ≥ 1, `slit: None`) or of the input cut
+    /// along slits (its faces are the input's, in the input's order).
+    Global {
+        /// The map (of `slit.mesh`, or of the input).
+        map: Box<GlobalMap>,
+        /// The slit mesh mapped.
+        slit: Option<SlitMesh>,
+    },
+}
+
+/// The outcome of [`topology_opt`].
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct TopologyOpt {
+    /// Every step, step 0 the starting map.
+    pub steps: Vec<TopologyStep>,
+    /// The step whose layout is returned (lowest energy).
+    pub best_step: usize,
+    /// That layout.
+    pub best: BestLayout,
+    /// The slit length used, in 3D units.
+    pub slit_length: f64,
+    /// Why the loop stopped.
+    pub stop: String,
+    /// Total wall-clock time, milliseconds.
+    pub total_ms: f64,
+}
+
+/// What the loop needs from a map: per-face image areas of the input's faces and the
+/// vertices to leave alone (zero clusters), in input numbering.
+struct Measured {
+    image: Vec<f64>,
+    excluded: Vec<bool>,
+    step: TopologyStep,
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+fn area_stats(image: &[f64], shares: &[f64]) -> LogRatioStats {
+    let total: f64 = image.iter().filter(|a| **a > 0.0).sum();
+    let logs: Vec<f64> = image
+        .iter()
+        .zip(shares)
+        .filter(|(a, _)| **a > 0.0)
+        .map(|(a, s)| (a / total / s).ln())
+        .collect();
+    log_ratio_stats(&logs)
+}
+
+/// Measures a global map of `mesh` or of its slit mesh (`original`: input vertex of each
+/// slit-mesh vertex, `None` for the input itself).
+fn measure_global(
+    mesh: &TriMesh,
+    map: &GlobalMap,
+    original: Option<&[u32]>,
+    shares: &[f64],
+) -> Measured {
+    let uv = map.input_corner_uv();
+    let image: Vec<f64> = (0..mesh.num_faces())
+        .map(|f| planar_signed_area([uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]))
+        .collect();
+    let mut excluded = vec![false; mesh.num_vertices()];
+    for v in 0..map.input_vertices {
+        if map.zeros.in_zero_cluster[v] {
+            excluded[original.map_or(v, |o| o[v] as usize)] = true;
+        }
+    }
+    let (at, outside) = map.input_folds();
+    let step = TopologyStep {
+        added: Vec::new(),
+        slits: 0,
+        surface_genus: map.surface_genus,
+        energy: map.metrics.uniformity_energy,
+        ratio_to_start: 1.0,
+        area_distortion_log: area_stats(&image, shares),
+        folds_at_zeros: at,
+        folds_outside_zeros: outside,
+        time_ms: map.timings_ms.total,
+        factor_ms: map.timings_ms.factor,
+        objective_ms: map.timings_ms.objective,
+    };
+    Measured {
+        image,
+        excluded,
+        step,
+    }
+}
+
+/// Slits at the extreme clusters of the map measured in `m`, on a copy of `planner`: at
+/// most `budget`, at least `need` (else relaxing the thresholds when `relax`).
+fn add_slits(
+    mesh: &TriMesh,
+    planner: &SlitPlanner,
+    m: &Measured,
+    options: &TopologyOptOptions,
+    (length, budget, need, relax): (f64, usize, usize, bool),
+) -> (SlitPlanner, Vec<SlitRecord>) {
+    let adjacency = mesh.vertex_adjacency();
+    let log_ratio = vertex_log_area_ratio(mesh, &m.image);
+    let (mut fraction, mut cap) = (
+        options.extreme_area_fraction,
+        options.max_extreme_area_ratio,
+    );
+    let rounds = if relax { FIRST_STEP_RELAXATIONS + 1 } else { 1 };
+    let mut out = (planner.clone(), Vec::new());
+    for _ in 0..rounds {
+        let th = extreme_threshold(mesh, &log_ratio, &m.excluded, fraction, cap);
+        let clusters = extreme_clusters(mesh, &adjacency, &log_ratio, &m.excluded, th);
+        let mut trial = planner.clone();
+        let mut added = Vec::new();
+        for c in &clusters {
+            if added.len() >= budget {
+                break;
+            }
+            if let Some(r) = slit_cluster(mesh, &mut trial, c, length) {
+                added.push(r);
+            }
+        }
+        let (enough, none) = (added.len() >= need, clusters.is_empty());
+        out = (trial, added);
+        // relax only to find a partner for a genuine extreme cluster: with none at all the
+        // shape is compact and slits do not pay
+        if enough || none {
+            break;
+        }
+        fraction *= 2.0;
+        cap = 1.0;
+    }
+    out
+}
+
+/// A slit at the cluster's centre vertex, or at the next vertex nearest to the centre.
+fn slit_cluster(
+    mesh: &TriMesh,
+    planner: &mut SlitPlanner,
+    c: &Cluster,
+    length: f64,
+) -> Option<SlitRecord> {
+    for &v in c.by_distance.iter().take(CENTRE_CANDIDATES) {
+        let Some(path) = planner.propose(mesh, v, length) else {
+            continue;
+        };
+        if planner.add(path.clone()).is_ok() {
+            return Some(SlitRecord {
+                centre: v,
+                vertices: path,
+                cluster_vertices: c.by_distance.len(),
+                cluster_area_fraction: c.area_fraction,
+                cluster_min_log_ratio: c.min_log_ratio,
+            });
+        }
+    }
+    None
+}
+
+/// The starting map: the uniformity-optimal Möbius sphere map of a closed genus-0 mesh, or
+/// the most uniform global map of a surface of genus ≥ 1 (or with ≥ 2 boundary loops).
+fn start(
+    mesh: &TriMesh,
+    options: &TopologyOptOptions,
+    shares: &[f64],
+) -> Result<(Measured, BestLayout), GlobalError> {
+    if mesh.topology() != Topology::Sphere {
+        let map = global_map(mesh, &options.global)?;
+        let m = measure_global(mesh, &map, None, shares);
+        return Ok((
+            m,
+            BestLayout::Global {
+                map: Box::new(map),
+                slit: None,
+            },
+        ));
+    }
+    let t = Instant::now();
+    let map = sphere_map(mesh, &SphereOptions::DEFAULT)?;
+    let best = optimize_sphere_mobius(
+        mesh,
+        &map.points,
+        &MobiusObjective::Uniform,
+        &MobiusOptions::DEFAULT,
+    )?;
+    let image = sphere_face_areas(mesh, &best.points);
+    let inverted = mesh
+        .faces()
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|v| best.points[v as usize]);
+            crate::stereo::dot(a, crate::stereo::cross(b, c)) <= 0.0
+        })
+        .count();
+    let step = TopologyStep {
+        added: Vec::new(),
+        slits: 0,
+        surface_genus: 0,
+        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
+        ratio_to_start: 1.0,
+        area_distortion_log: area_stats(&image, shares),
+        folds_at_zeros: 0,
+        folds_outside_zeros: inverted,
+        time_ms: ms(t),
+        factor_ms: map.report.timings_ms.factor,
+        objective_ms: 0.0,
+    };
+    let excluded = vec![false; mesh.num_vertices()];
+    Ok((
+        Measured {
+            image,
+            excluded,
+            step,
+        },
+        BestLayout::Sphere(best.points),
+    ))
+}
+
+/// Topological optimization (Jin et al. 2004, §3.5): starting from the uniformity-optimal
+/// Möbius sphere map (closed genus 0) or the most uniform holomorphic form (genus ≥ 1),
+/// greedily slits the surface at all extreme clusters of the current map at once (see
+/// `clusters.rs`), maps the slit surface through its double covering by its most uniform
+/// form ([`global_map`]), and repeats on the latest slit surface until
+/// [`TopologyOptOptions::max_slits`], no new cluster, a failed map, or
+/// [`TopologyOptOptions::patience`] steps without a new best. The energy is not monotone in
+/// the slit count, so the best layout seen is returned — the starting map included: the
+/// result is never less uniform than it.
+///
+/// # Errors
+/// [`GlobalError::WrongTopology`] for a disk or several components;
+/// [`GlobalError::InvalidOption`] for a slit length that is not positive and finite;
+/// the errors of the starting map ([`crate::sphere_map`], [`global_map`]). A failed map of
+/// a slit surface ends the loop instead (see [`TopologyOpt::stop`]).
+pub fn topology_opt(
+    mesh: &TriMesh,
+    options: &TopologyOptOptions,
+) -> Result<TopologyOpt, GlobalError> {
+    let t_all = Instant::now();
+    let found = mesh.topology();
+    let usable = matches!(
+        found,
+        Topology::Sphere
+            | Topology::MultiplyConnected { .. }
+            | Topology::ClosedHigherGenus { .. }
+            | Topology::OpenHigherGenus { .. }
+    );
+    if !usable {
+        return Err(GlobalError::WrongTopology {
+            operation: "topological optimization",
+            expected: "one closed genus-0 surface, or a surface of genus ≥ 1 or with ≥ 2 \
+                       boundary loops",
+            found,
+        });
+    }
+    if !(options.slit_length > 0.0 && options.slit_length.is_finite()) {
+        return Err(GlobalError::InvalidOption {
+            name: "slit_length",
+            reason: "must be a positive fraction of the bounding-box diagonal",
+        });
+    }
+    let shares = surface_shares(mesh);
+    let (mut current, mut best) = start(mesh, options, &shares)?;
+    let e0 = current.step.energy;
+    let length = options.slit_length * mesh.bbox_diagonal();
+    let first_need = if found == Topology::Sphere { 2 } else { 1 };
+    let mut steps = vec![current.step.clone()];
+    let (mut best_step, mut best_energy, mut since_best) = (0, e0, 0);
+    let mut planner = SlitPlanner::new(mesh);
+    let stop = loop {
+        let have = planner.slits().len();
+        if have >= options.max_slits {
+            break format!("reached {} slits (max_slits)", options.max_slits);
+        }
+        if since_best >= options.patience {
+            break format!("{since_best} steps without a new best (patience)");
+        }
+        let t = Instant::now();
+        let need = if have == 0 { first_need } else { 1 };
+        let budget = options.max_slits - have;
+        let (next, added) = add_slits(
+            mesh,
+            &planner,
+            &current,
+            options,
+            (length, budget, need, have == 0 && need > 1),
+        );
+        if added.len() < need {
+            break "no new extreme cluster to slit".to_owned();
+        }
+        planner = next;
+        let cut = planner.cut(mesh)?;
+        let map = match global_map(&cut.mesh, &options.global) {
+            Ok(map) if map.split_edges == 0 => map,
+            Ok(_) => break "the double covering had to split edges (not expected)".to_owned(),
+            Err(e) => break format!("the map of the slit surface failed: {e}"),
+        };
+        let mut m = measure_global(mesh, &map, Some(&cut.original), &shares);
+        m.step.added = added;
+        m.step.slits = planner.slits().len();
+        m.step.ratio_to_start = m.step.energy / e0;
+        m.step.time_ms = ms(t);
+        steps.push(m.step.clone());
+        if m.step.energy < best_energy {
+            (best_step, best_energy, since_best) = (steps.len() - 1, m.step.energy, 0);
+            best = BestLayout::Global {
+                map: Box::new(map),
+                slit: Some(cut),
+            };
+        } else {
+            since_best += 1;
+        }
+        current = m;
+    };
+    Ok(TopologyOpt {
+        steps,
+        best_step,
+        best,
+        slit_length: length,
+        stop,
+        total_ms: ms(t_all),
+    })
+}
