@@ -68,7 +68,12 @@ fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
 }
 
 /// Global conformal parameterization of a surface with handles by a holomorphic 1-form, as
-/// `conformap global`. See `conformap.pyi`.
+/// `conformap global`: returns `(uv, F_uv, report)`, the seamed layout (`uv` (k, 2) one
+/// row per corner class, `F_uv` (m, 3) per face the row of each corner); with
+/// `return_mesh=True` also the mesh it belongs to (the full documentation is in
+/// `conformap.pyi`).
+///
+/// Example: `uv, F_uv, report = conformap.global_map(V, F, "zeros", zeros=[10])`
 #[pyfunction]
 #[pyo3(signature = (v, f, objective = "uniform", *, form = None, region = None, zeros = None,
     starts = None, conjugate = "nearest", root = None, return_mesh = false, strict = false,

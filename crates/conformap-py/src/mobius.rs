@@ -133,8 +133,13 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
     })
 }
 
-/// The optimal Möbius transformation of a disk or sphere map, as `conformap mobius`.
-/// See `conformap.pyi`.
+/// The optimal Möbius transformation of a disk or sphere map, as `conformap mobius`:
+/// `param` (n, 2) in the unit disk or (n, 3) on the unit sphere, `region` face indices
+/// for the emphasizing objectives; returns `(param, report)` (the full documentation is in
+/// `conformap.pyi`).
+///
+/// Example: `moved, report = conformap.mobius(V, F, uv, objective="emphasize",
+/// region=range(100))`
 #[pyfunction]
 #[pyo3(signature = (v, f, param, domain = "disk", objective = "uniform", region = None, *,
     max_area_scale = EMPHASIZE_MAX_AREA_SCALE, strict = false, max_memory = None))]

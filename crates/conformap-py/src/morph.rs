@@ -77,8 +77,12 @@ pub type MorphArrays<'py> = (
     Bound<'py, PyAny>,
 );
 
-/// A morph through two or more disk-like surfaces with landmarks, as `conformap morph`.
-/// See `conformap.pyi`.
+/// A morph through two or more disk-like surfaces with landmarks, as `conformap morph`:
+/// `surfaces` `[(V1, F1), (V2, F2), …]`, `landmarks` one list of vertex indices (or dict
+/// name → vertex) per surface; returns `(frames (N, n, 3), F, report)` (the full
+/// documentation is in `conformap.pyi`).
+///
+/// Example: `P, F, report = conformap.morph([(V1, F1), (V2, F2)], [L1, L2], frames=24)`
 #[pyfunction]
 #[pyo3(signature = (surfaces, landmarks, frames, *, lambda_ = None, hard = false))]
 pub fn morph<'py>(

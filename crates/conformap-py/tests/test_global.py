@@ -87,6 +87,25 @@ def test_eightsim_matches_cli(options, tmp_path):
     assert report["metrics"]["folds_outside_zeros"] == 0
 
 
+def test_write_seamed_layout_as_the_cli(tmp_path):
+    mesh = FIXTURES / "eightsim.obj"
+    V, F = conformap.read_mesh(mesh)
+    uv, F_uv, report = conformap.global_map(V, F)
+    g = report["global"]
+    out = tmp_path / "py.obj"
+    conformap.write_mesh(out, V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
+    cli_global(tmp_path, mesh)  # writes tmp_path / "out.obj"
+    body = lambda p: [l for l in p.read_text().splitlines() if not l.startswith("#")]
+    mine, theirs = body(out), body(tmp_path / "out.obj")
+    assert [l for l in mine if l.startswith("f ")] == [l for l in theirs if l.startswith("f ")]
+    vt = lambda lines: np.array([[float(x) for x in l.split()[1:3]] for l in lines if l.startswith("vt ")])
+    assert np.max(np.abs(vt(mine) - vt(theirs))) < 1e-12
+    with pytest.raises(conformap.ConformapError, match="F_uv has 3 rows, F 350"):
+        conformap.write_mesh(out, V, F, uv=uv, F_uv=F_uv[:3])
+    with pytest.raises(conformap.ConformapError, match="F_uv needs uv"):
+        conformap.write_mesh(out, V, F, F_uv=F_uv)
+
+
 def test_emphasize_region_and_halftunnel_match_cli(tmp_path):
     mesh = FIXTURES / "eightsim.obj"
     V, F = conformap.read_mesh(mesh)
