@@ -15,11 +15,16 @@ Example::
     assert report["metrics"]["flipped_faces"] == 0
     print(report["metrics"]["conformal_energy"])
 
-Not bound yet: ``mobius``, ``global_map``, ``morph``.
+Every map command of the CLI is bound: ``disk_map``, ``sphere_map``, ``mobius``,
+``global_map`` (a seamed layout: ``uv`` and ``F_uv``), ``morph``; and ``metrics``, ``info``,
+``read_mesh``, ``write_mesh``.
+
+Exceptions carry ``exit_code`` (the CLI's: 1 bad input, 2 usage error, 3 numerical failure)
+and ``hint`` (the CLI's ``hint:`` line, or ``None``).
 """
 
 import os
-from typing import Any, Literal, Optional, Tuple, Union
+from typing import Any, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -34,10 +39,17 @@ class ConformapError(ValueError):
     """Bad input: invalid mesh (the element named), wrong topology for the map, bad option.
 
     The message is the CLI's ``error:`` line (path ``<arrays>``), then its ``hint:`` line.
+    ``exit_code`` is the CLI's (1 bad input, 2 usage error), ``hint`` its hint or ``None``.
     """
+
+    exit_code: int
+    hint: Optional[str]
 
 class NumericalError(RuntimeError):
     """A numerical failure (the CLI's exit 3), e.g. ``strict=True`` and no convergence."""
+
+    exit_code: int
+    hint: Optional[str]
 
 def disk_map(
     V: ArrayLike,
@@ -87,6 +99,151 @@ def sphere_map(
         S, report = conformap.sphere_map(*conformap.read_mesh("fixtures/spot.obj"), mobius="uniform")
     """
 
+def mobius(
+    V: ArrayLike,
+    F: ArrayLike,
+    param: ArrayLike,
+    domain: Literal["disk", "sphere"] = "disk",
+    objective: Literal["uniform", "emphasize", "emphasize-density"] = "uniform",
+    region: Optional[ArrayLike] = None,
+    *,
+    max_area_scale: float = 10.0,
+    strict: bool = False,
+    max_memory: Optional[int] = None,
+) -> Tuple[npt.NDArray[np.float64], Report]:
+    """The optimal Möbius transformation of a disk or sphere map, as ``conformap mobius``.
+
+    ``param``: ``domain="disk"``, an (n, 2) map ``u + i v`` in the unit disk (the ``uv`` of
+    ``disk_map``, or another tool's); ``domain="sphere"``, (n, 3) unit vectors (the ``S``
+    of ``sphere_map``). ``objective``: ``"uniform"`` minimizes the uniformity energy
+    Σ (image area share − surface area share)²; ``"emphasize"`` maximizes the image-area
+    share of the faces in ``region`` (the magnification capped by ``max_area_scale``,
+    ``--max-area-scale``); ``"emphasize-density"`` their mean log area magnification.
+    ``region``: a sequence or integer array of 0-based face indices (needed by, and only
+    by, the emphasizing objectives; a face out of range raises the CLI's message with
+    ``region[k]`` in place of the file line).
+
+    Returns ``(param, report)``: the moved map, same shape as ``param``; the CLI's report
+    dict (``param.path == "<array>"``; ``solver.mobius`` holds the optimization,
+    ``metrics.uniformity_energy_before`` the map given).
+
+    Example::
+
+        uv, _ = conformap.disk_map(V, F)
+        moved, report = conformap.mobius(V, F, uv)
+        report["metrics"]["uniformity_energy"] < report["metrics"]["uniformity_energy_before"]
+        face_moved, _ = conformap.mobius(V, F, uv, objective="emphasize", region=range(100))
+    """
+
+@overload
+def global_map(
+    V: ArrayLike,
+    F: ArrayLike,
+    objective: Literal["uniform", "least-uniform", "emphasize", "de-emphasize", "zeros", "basis"] = "uniform",
+    *,
+    form: Optional[int] = None,
+    region: Optional[ArrayLike] = None,
+    zeros: Optional[Sequence[int]] = None,
+    starts: Optional[int] = None,
+    conjugate: Literal["nearest", "gu-yau"] = "nearest",
+    root: Optional[int] = None,
+    return_mesh: Literal[False] = False,
+    strict: bool = False,
+    max_memory: Optional[int] = None,
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Report]: ...
+@overload
+def global_map(
+    V: ArrayLike,
+    F: ArrayLike,
+    objective: Literal["uniform", "least-uniform", "emphasize", "de-emphasize", "zeros", "basis"] = "uniform",
+    *,
+    form: Optional[int] = None,
+    region: Optional[ArrayLike] = None,
+    zeros: Optional[Sequence[int]] = None,
+    starts: Optional[int] = None,
+    conjugate: Literal["nearest", "gu-yau"] = "nearest",
+    root: Optional[int] = None,
+    return_mesh: Literal[True],
+    strict: bool = False,
+    max_memory: Optional[int] = None,
+) -> Tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.int64],
+    Report,
+    npt.NDArray[np.float64],
+    npt.NDArray[np.int64],
+]:
+    """Global conformal parameterization of a surface with handles (genus ≥ 1, or several
+    boundary loops through its double covering) by a holomorphic 1-form, as
+    ``conformap global``.
+
+    Returns ``(uv, F_uv, report)``, a seamed layout as libigl (``TC``/``FTC``) and trimesh
+    keep seamed texture coordinates: ``uv`` (k, 2) float64, one row per corner class (a
+    vertex, split where a seam passes through it: k ≥ n); ``F_uv`` (m, 3) int64, per face
+    of ``F`` the row of ``uv`` of each corner, so ``uv[F_uv[f, j]]`` is the map at corner
+    ``j`` of face ``f`` (vertex ``F[f, j]``). ``uv`` is the raw layout (area equal to the
+    surface's; across a seam the two sides differ by a period, a pure translation; the
+    periods are ``report["global"]["period_matrix"]``), the CLI's ``--flat``. The
+    texture coordinates the CLI writes (the layout fitted into the unit square) are
+    ``(uv - report["global"]["uv_offset"]) * report["global"]["uv_scale"]``.
+
+    ``objective``: ``"uniform"`` (the most uniform form; ``starts`` random starts besides
+    the 2g basis forms), ``"least-uniform"``, ``"emphasize"`` / ``"de-emphasize"`` (the
+    largest / smallest share of the parameter area for the faces of ``region``, face
+    indices), ``"zeros"`` (zeros nearest the vertices ``zeros``; genus ≥ 2), ``"basis"``
+    (the basis form of lowest uniformity energy); ``form=K`` lays out basis form K
+    instead. ``conjugate``, ``root``: the CLI's ``--conjugate``, ``--root``.
+
+    A surface with boundary chords (an interior edge joining two boundary vertices) is
+    refined by its double covering: the layout then belongs to a refined mesh (its first
+    vertices are ``V``, in order) and ``return_mesh=True`` is needed: it returns
+    ``(uv, F_uv, report, V_out, F_out)``, the mesh ``F_uv`` belongs to (else the input).
+
+    Example::
+
+        V, F = conformap.read_mesh("fixtures/eightsim.obj")      # genus 2
+        uv, F_uv, report = conformap.global_map(V, F)
+        report["global"]["zeros"]        # multiplicities sum to 2g − 2 = 2
+        g = report["global"]              # vt as the CLI writes them:
+        conformap.write_mesh("eight_uv.obj", V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
+    """
+
+def morph(
+    surfaces: Sequence[Tuple[ArrayLike, ArrayLike]],
+    landmarks: Sequence[Union[ArrayLike, Mapping[str, int]]],
+    frames: int,
+    *,
+    lambda_: Optional[float] = None,
+    hard: bool = False,
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Report]:
+    """A morph through two or more disk-like key surfaces with landmarks (CEM §6), as
+    ``conformap morph``.
+
+    ``surfaces``: ``[(V1, F1), (V2, F2), ...]``, each a disk (one boundary loop, genus 0);
+    every frame has the vertices and faces of the first. ``landmarks``: one list per
+    surface, the same number in every list: 0-based vertex indices (landmark j of every
+    surface corresponds; named ``"0"``, ``"1"``, ... in the report), or dicts
+    ``name -> vertex`` (the same names in the same order, as the CLI's landmark files).
+    The first landmark goes to the centre of the disk, the second fixes the rotation:
+    both must be interior vertices. ``frames``: N ≥ number of surfaces (key surface k at
+    frame round(k (N−1)/(K−1))). ``lambda_``: the landmark weight λ of Eq. 34
+    (``--lambda``); ``hard=True`` puts the landmarks exactly on their counterparts.
+
+    Returns ``(frames, F, report)``: ``frames`` (N, n, 3) float64, the positions of the
+    first surface's vertices at each frame (``frames[0]`` is ``V1`` bit for bit); ``F``
+    (m, 3) int64, the first surface's faces; the CLI's report dict (``inputs`` named
+    ``<surfaces[k]>``, ``landmark_files`` ``<landmarks[k]>``; errors name them the same
+    way).
+
+    Example::
+
+        A = conformap.read_mesh("fixtures/morph/ict_neutral.obj")
+        B = conformap.read_mesh("fixtures/morph/ict_pout.obj")
+        L = [4857, 3742, 1528, 3721, 1507]                 # nose tip, eye corners
+        P, F, report = conformap.morph([A, B], [L, L], frames=24)
+        conformap.write_mesh("frame_12.obj", P[12], F)
+    """
+
 def metrics(V: ArrayLike, F: ArrayLike, param: ArrayLike) -> Report:
     """Quality of a planar map ``param`` ((n, 2), one point per vertex), as
     ``conformap metrics --json`` (conformal energy, angle distortion, flips, ...).
@@ -114,12 +271,21 @@ def read_mesh(path: PathLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.i
     """
 
 def write_mesh(
-    path: PathLike, V: ArrayLike, F: ArrayLike, uv: Optional[ArrayLike] = None
+    path: PathLike,
+    V: ArrayLike,
+    F: ArrayLike,
+    uv: Optional[ArrayLike] = None,
+    F_uv: Optional[ArrayLike] = None,
 ) -> None:
-    """Writes ``(V, F)`` to OBJ / glTF / GLB, with per-vertex texture coordinates ``uv``
-    ((n, 2), written as given) when passed.
+    """Writes ``(V, F)`` to OBJ / glTF / GLB, with texture coordinates ``uv`` written as
+    given when passed: one per vertex ((n, 2)), or with ``F_uv`` a seamed layout (``uv``
+    (k, 2), ``F_uv`` (m, 3) rows of ``uv`` per face corner, as ``global_map`` returns:
+    OBJ ``f v/vt``, glTF split along the seams).
 
     Example::
 
         conformap.write_mesh("woody_uv.obj", V, F, uv=(uv + 1) / 2)
+        uv, F_uv, report = conformap.global_map(*conformap.read_mesh("fixtures/eightsim.obj"))
+        g = report["global"]
+        conformap.write_mesh("eight_uv.obj", V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
     """

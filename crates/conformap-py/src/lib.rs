@@ -11,12 +11,18 @@
 //! - [`errors`]: `ConformapError` (a `ValueError`) and `NumericalError` (a
 //!   `RuntimeError`), from the CLI's failures.
 //! - [`maps`]: `disk_map`, `sphere_map`.
+//! - [`mobius`]: `mobius` (the map and the region in memory).
+//! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
+//! - [`morph`]: `morph` (frames of a morph through key surfaces).
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
 
 pub mod arrays;
 pub mod errors;
+pub mod global;
 pub mod maps;
 pub mod meshes;
+pub mod mobius;
+pub mod morph;
 
 use pyo3::prelude::*;
 
@@ -29,6 +35,9 @@ fn conformap(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", py.get_type::<errors::NumericalError>())?;
     m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
+    m.add_function(wrap_pyfunction!(mobius::mobius, m)?)?;
+    m.add_function(wrap_pyfunction!(global::global_map, m)?)?;
+    m.add_function(wrap_pyfunction!(morph::morph, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::info, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::metrics, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;

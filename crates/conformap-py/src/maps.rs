@@ -14,16 +14,16 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 
 use crate::arrays::{mesh_input, to_array, to_py_json, MEMORY_PATH};
-use crate::errors::{bad_input, to_py};
+use crate::errors::{bad_input, to_py, usage};
 
 /// A value of a CLI enum (`--method`, `--ordering`, `--mobius`) by its command-line name.
-fn choice<T: ValueEnum>(name: &str, value: &str) -> PyResult<T> {
+pub(crate) fn choice<T: ValueEnum>(name: &str, value: &str) -> PyResult<T> {
     T::from_str(value, false).map_err(|_| {
         let names: Vec<String> = T::value_variants()
             .iter()
             .filter_map(|v| v.to_possible_value().map(|p| p.get_name().to_string()))
             .collect();
-        bad_input(format!(
+        usage(format!(
             "{name} must be one of {}, got {value:?}",
             names.join(", ")
         ))
@@ -33,7 +33,7 @@ fn choice<T: ValueEnum>(name: &str, value: &str) -> PyResult<T> {
 /// Runs `cmd` on `input` with the GIL released: usage check, memory check against
 /// `max_memory` (or the memory available), solve, report; `strict` refuses what
 /// `--strict` refuses.
-fn run(
+pub(crate) fn run(
     py: Python<'_>,
     cmd: &(dyn MapCommand + Sync),
     input: &Input,
@@ -61,7 +61,7 @@ fn run(
 }
 
 /// The report as a dict (the CLI's `--report` JSON).
-fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
     let value = serde_json::to_value(report).map_err(|e| bad_input(e.to_string()))?;
     to_py_json(py, &value)
 }

@@ -74,36 +74,62 @@ pub fn read_mesh<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Mes
     ))
 }
 
-/// Writes `(V, F)` to an OBJ / glTF / GLB file, with per-vertex texture coordinates `uv`
-/// ((n, 2), written as given) when passed.
+/// Writes `(V, F)` to an OBJ / glTF / GLB file, with texture coordinates `uv` written as
+/// given when passed: one per vertex ((n, 2)), or, with `F_uv`, a seamed layout (`uv`
+/// (k, 2), `F_uv` (m, 3) rows of `uv` per face corner, as `global_map` returns; OBJ
+/// `f v/vt`, glTF split along the seams).
 #[pyfunction]
-#[pyo3(signature = (path, v, f, uv = None))]
+#[pyo3(signature = (path, v, f, uv = None, F_uv = None))]
+#[allow(non_snake_case)] // the keyword argument is spelled as libigl users write it
 pub fn write_mesh(
     py: Python<'_>,
     path: std::path::PathBuf,
     v: &Bound<'_, PyAny>,
     f: &Bound<'_, PyAny>,
     uv: Option<&Bound<'_, PyAny>>,
+    F_uv: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<()> {
-    let written = match uv {
-        None => {
+    let written = match (uv, F_uv) {
+        (None, Some(_)) => return Err(bad_input("F_uv needs uv, the rows it indexes")),
+        (None, None) => {
             let flat = points(v, "V", 3)?;
             let pts: Vec<[f64; 3]> = flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
             let faces = faces(f, pts.len())?;
             py.detach(|| conformap_io::write_flat(&path, &pts, &faces))
         }
-        Some(uv) => {
+        (Some(uv), None) => {
             let input = mesh_input(v, f)?;
             let flat = points(uv, "uv", 2)?;
             let n = input.mesh.num_vertices();
             if flat.len() != 2 * n {
                 return Err(bad_input(format!(
-                    "uv has {} rows, V {n}: one texture coordinate per vertex is needed",
+                    "uv has {} rows, V {n}: one texture coordinate per vertex is needed (or \
+                     pass F_uv for a seamed layout)",
                     flat.len() / 2
                 )));
             }
             let uv: Vec<[f64; 2]> = flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
             py.detach(|| conformap_io::write_mesh_with_uv(&path, &input.mesh, &uv, None))
+        }
+        (Some(uv), Some(f_uv)) => {
+            let input = mesh_input(v, f)?;
+            let flat = points(uv, "uv", 2)?;
+            let texcoords: Vec<[f64; 2]> = flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+            let tex_faces = faces(f_uv, texcoords.len()).map_err(|e| {
+                crate::errors::in_place(py, e, "F_uv (indices into the rows of uv)")
+            })?;
+            if tex_faces.len() != input.mesh.num_faces() {
+                return Err(bad_input(format!(
+                    "F_uv has {} rows, F {}: one row of uv indices per face is needed",
+                    tex_faces.len(),
+                    input.mesh.num_faces()
+                )));
+            }
+            let corner = conformap_io::CornerUv {
+                texcoords,
+                faces: tex_faces,
+            };
+            py.detach(|| conformap_io::write_mesh_with_corner_uv(&path, &input.mesh, &corner))
         }
     };
     written.map_err(|e| to_py(Failure::from(e)))

@@ -34,3 +34,35 @@ def run_cli(args, tmp_path):
 @pytest.fixture
 def fixture_path():
     return lambda name: FIXTURES / name
+
+
+def cli_error(args, tmp_path):
+    """Runs the CLI expecting a failure; returns (returncode, its message without the
+    path in front, its hint line or None)."""
+    code, _, err = run_cli(args, tmp_path)
+    lines = err.splitlines()
+    message = lines[0].removeprefix("error: ")
+    hint = next((l.removeprefix("hint: ") for l in lines[1:] if l.startswith("hint: ")), None)
+    return code, message, hint
+
+
+def after_place(message, place):
+    """The message after `place: ` (a file of the CLI, a `<...>` name of the package)."""
+    prefix = f"{place}: "
+    assert message.startswith(prefix), (message, prefix)
+    return message[len(prefix):]
+
+
+def torus(n=24, m=12, R=2.0, r=0.7):
+    """A torus of revolution (genus 1, closed): (V, F), consistently oriented."""
+    import numpy as np
+
+    u, v = np.meshgrid(np.arange(n) * 2 * np.pi / n, np.arange(m) * 2 * np.pi / m, indexing="ij")
+    V = np.stack([(R + r * np.cos(v)) * np.cos(u), (R + r * np.cos(v)) * np.sin(u), r * np.sin(v)], -1)
+    idx = lambda i, j: (i % n) * m + (j % m)
+    F = []
+    for i in range(n):
+        for j in range(m):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            F += [[a, b, c], [a, c, d]]
+    return V.reshape(-1, 3), np.array(F, dtype=np.int64)

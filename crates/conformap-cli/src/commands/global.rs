@@ -210,6 +210,24 @@ impl MapCommand for GlobalArgs {
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
+        let region = match &self.region {
+            Some(path) => read_region(path, mesh.num_faces())?,
+            None => Vec::new(),
+        };
+        self.solve_with_region(input, region)
+    }
+}
+
+impl GlobalArgs {
+    /// [`MapCommand::solve`] with the faces of `--region` already in memory (the Python
+    /// package's arrays; each checked with [`crate::commands::param::region_face`]; empty
+    /// when there is none). `--root` and `--zeros` are checked against the mesh here.
+    ///
+    /// # Errors
+    /// Usage failures for a root or zero that is not a vertex; every failure of the map
+    /// and of its metrics.
+    pub fn solve_with_region(&self, input: &Input, region: Vec<usize>) -> Result<Solved, Failure> {
+        let mesh = &input.mesh;
         if let Some(root) = self.root.filter(|&r| r >= mesh.num_vertices()) {
             return Err(Failure::Usage(format!(
                 "--root {root} is not a vertex: the mesh has {} (0-based)",
@@ -227,10 +245,6 @@ impl MapCommand for GlobalArgs {
                 mesh.num_vertices()
             )));
         }
-        let region = match &self.region {
-            Some(path) => read_region(path, mesh.num_faces())?,
-            None => Vec::new(),
-        };
         if self.topology_opt {
             return crate::commands::global_topology::solve(self, input);
         }

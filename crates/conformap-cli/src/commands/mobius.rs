@@ -146,21 +146,48 @@ impl MapCommand for MobiusArgs {
         // connectivity checked, geometry not; non-finite values are refused by the
         // optimization, which names the vertex
         let param = read_map_file(&self.param, &self.input.mesh, mesh)?;
-        let objective = match (&self.objective, &self.region) {
-            (Objective::Emphasize, Some(path)) => MobiusObjective::Emphasize {
-                region: read_region(path, mesh.num_faces())?,
-            },
-            (Objective::EmphasizeDensity, Some(path)) => MobiusObjective::EmphasizeDensity {
-                region: read_region(path, mesh.num_faces())?,
-            },
-            _ => MobiusObjective::Uniform,
+        let region = match &self.region {
+            Some(path) => Some(read_region(path, mesh.num_faces())?),
+            None => None,
         };
-        let read_ms = ms_since(t);
+        self.solve_with(input, &param, region, ms_since(t))
+    }
+}
+
+impl MobiusArgs {
+    /// [`MapCommand::solve`] on a map and a region already in memory (the Python package's
+    /// arrays): `param` stands for the file `self.param` names (its connectivity already
+    /// checked against the mesh), `region` for the faces of `--region` (each checked with
+    /// [`crate::commands::param::region_face`]); `read_ms` is the report's `read` time.
+    ///
+    /// # Errors
+    /// A usage failure when the objective needs a region and there is none; every failure
+    /// of the optimization and of the metrics.
+    pub fn solve_with(
+        &self,
+        input: &Input,
+        param: &MapFile,
+        region: Option<Vec<usize>>,
+        read_ms: f64,
+    ) -> Result<Solved, Failure> {
+        let mesh = &input.mesh;
+        let objective = match (self.objective, region) {
+            (Objective::Uniform, _) => MobiusObjective::Uniform,
+            (Objective::Emphasize, Some(region)) => MobiusObjective::Emphasize { region },
+            (Objective::EmphasizeDensity, Some(region)) => {
+                MobiusObjective::EmphasizeDensity { region }
+            }
+            (_, None) => {
+                return Err(Failure::Usage(
+                    "--objective emphasize needs --region FACES.txt".to_string(),
+                ))
+            }
+        };
         let options = MobiusOptions::DEFAULT.with_max_area_scale(self.max_area_scale);
         let t = Instant::now();
         let moved = match self.domain {
-            Domain::Disk => self.disk(mesh, &param, &objective, &options)?,
-            Domain::Sphere => self.sphere(mesh, &param, &objective, &options)?,
+            Domain::Disk => self.disk(mesh, param, &objective, &options)?,
+            Domain::Sphere => self.sphere(mesh, param, &objective, &options)?,
         };
         let metrics_ms = (ms_since(t) - moved.report.time_ms).max(0.0);
         let mobius = moved.report;
@@ -207,9 +234,7 @@ impl MapCommand for MobiusArgs {
             summary,
         })
     }
-}
 
-impl MobiusArgs {
     fn fail(&self, e: conformap_global::GlobalError) -> Failure {
         Failure::from(e).in_file(&self.param)
     }

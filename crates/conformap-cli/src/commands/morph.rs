@@ -87,6 +87,30 @@ enum Target {
 
 impl MorphArgs {
     fn check_usage(&self) -> Result<Target, Failure> {
+        self.check_counts()?;
+        let is_dir =
+            self.output.is_dir() || self.output.as_os_str().to_string_lossy().ends_with('/');
+        if is_dir {
+            let frames = (0..self.frames)
+                .map(|i| self.output.join(format!("frame_{i:04}.obj")))
+                .collect();
+            return Ok(Target::Frames(frames));
+        }
+        match self.output.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("glb") => Ok(Target::Glb(self.output.clone())),
+            _ => Err(Failure::Usage(format!(
+                "-o {}: write OUT.glb or an existing directory DIR/",
+                self.output.display()
+            ))),
+        }
+    }
+
+    /// The usage checks that need no file: at least two surfaces, one landmark list per
+    /// surface, enough frames, a valid λ.
+    ///
+    /// # Errors
+    /// [`Failure::Usage`] naming the first that fails.
+    pub fn check_counts(&self) -> Result<(), Failure> {
         let k = self.surfaces.len();
         if k < 2 {
             return Err(Failure::Usage(format!(
@@ -111,21 +135,7 @@ impl MorphArgs {
                 "--lambda must be a finite number > 0, got {l}"
             )));
         }
-        let is_dir =
-            self.output.is_dir() || self.output.as_os_str().to_string_lossy().ends_with('/');
-        if is_dir {
-            let frames = (0..self.frames)
-                .map(|i| self.output.join(format!("frame_{i:04}.obj")))
-                .collect();
-            return Ok(Target::Frames(frames));
-        }
-        match self.output.extension().and_then(|e| e.to_str()) {
-            Some(e) if e.eq_ignore_ascii_case("glb") => Ok(Target::Glb(self.output.clone())),
-            _ => Err(Failure::Usage(format!(
-                "-o {}: write OUT.glb or an existing directory DIR/",
-                self.output.display()
-            ))),
-        }
+        Ok(())
     }
 
     fn options(&self) -> MorphOptions {
@@ -168,53 +178,27 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
         surfaces.push(Surface::new(input.mesh, landmarks));
     }
     let read_ms = ms_since(t);
-    let t = Instant::now();
-    let m = morph(&surfaces, &args.options()).map_err(|e| morph_failure(e, args))?;
-    let solve_ms = ms_since(t);
+    let solution = solve(args, &surfaces)?;
+    let (m, times) = (&solution.morph, &solution.times);
 
     let t = Instant::now();
-    let times = m
-        .frame_times(args.frames)
-        .map_err(|e| morph_failure(e, args))?;
-    let key_frames = m
-        .key_frames(args.frames)
-        .map_err(|e| morph_failure(e, args))?;
     let mut staged = Staged::new();
     match &target {
         Target::Frames(paths) => {
-            for (path, &time) in paths.iter().zip(&times) {
+            for (path, &time) in paths.iter().zip(times) {
                 staged.flat(path, &m.frame(time), m.faces())?;
             }
         }
-        Target::Glb(path) => stage_glb(&mut staged, path, &m, &times)?,
+        Target::Glb(path) => stage_glb(&mut staged, path, m, times)?,
     }
     let write_ms = ms_since(t);
-    let report = MorphCommandReport {
-        conformap_version: env!("CARGO_PKG_VERSION"),
-        command: "morph",
-        method: if args.hard { "hard" } else { "soft" },
-        inputs: args
-            .surfaces
-            .iter()
-            .zip(&surfaces)
-            .map(|(p, s)| InputInfo::new(p, &s.mesh))
-            .collect(),
-        landmark_files: args
-            .landmarks
-            .iter()
-            .map(|p| p.display().to_string())
-            .collect(),
-        frames: args.frames,
-        key_frames,
-        morph: m.report.clone(),
-        timings_ms: StageTimings {
-            read: read_ms,
-            solve: solve_ms,
-            write: write_ms,
-            total: ms_since(t_all),
-            ..StageTimings::default()
-        },
+    let timings = StageTimings {
+        read: read_ms,
+        write: write_ms,
+        total: ms_since(t_all),
+        ..StageTimings::default()
     };
+    let report = command_report(args, &surfaces, &solution, timings);
     if let Some(path) = &args.report {
         staged.json(path, &report)?;
     }
@@ -251,6 +235,75 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
         messages,
         ..Outcome::default()
     })
+}
+
+/// A morph computed, before anything is written.
+#[derive(Debug)]
+pub struct MorphSolution {
+    /// The morph.
+    pub morph: Morph,
+    /// The time of every frame (`--frames` of them).
+    pub times: Vec<f64>,
+    /// The frame index of every key surface.
+    pub key_frames: Vec<usize>,
+    /// Wall-clock milliseconds of the morph, frame times included (the report's `solve`).
+    pub solve_ms: f64,
+}
+
+/// The morph of `surfaces` (read, or given as arrays to the Python package) with the
+/// options and frame count of `args`; `args.surfaces` and `args.landmarks` name the
+/// surfaces and landmark lists in errors. Nothing is read or written.
+///
+/// # Errors
+/// Bad surfaces or landmarks (naming the mesh or landmark file), numerical failures.
+pub fn solve(args: &MorphArgs, surfaces: &[Surface]) -> Result<MorphSolution, Failure> {
+    let t = Instant::now();
+    let m = morph(surfaces, &args.options()).map_err(|e| morph_failure(e, args))?;
+    let times = m
+        .frame_times(args.frames)
+        .map_err(|e| morph_failure(e, args))?;
+    let key_frames = m
+        .key_frames(args.frames)
+        .map_err(|e| morph_failure(e, args))?;
+    Ok(MorphSolution {
+        morph: m,
+        times,
+        key_frames,
+        solve_ms: ms_since(t),
+    })
+}
+
+/// The report of a morph: `timings` holds `read`, `write` and `total` (the caller's), the
+/// solution its `solve` time.
+pub fn command_report(
+    args: &MorphArgs,
+    surfaces: &[Surface],
+    solution: &MorphSolution,
+    timings: StageTimings,
+) -> MorphCommandReport {
+    MorphCommandReport {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: "morph",
+        method: if args.hard { "hard" } else { "soft" },
+        inputs: args
+            .surfaces
+            .iter()
+            .zip(surfaces)
+            .map(|(p, s)| InputInfo::new(p, &s.mesh))
+            .collect(),
+        landmark_files: args
+            .landmarks
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect(),
+        frames: args.frames,
+        key_frames: solution.key_frames.clone(),
+        morph: solution.morph.report.clone(),
+        timings_ms: StageTimings {
+            solve: solution.solve_ms,
+            ..timings
+        },
+    }
 }
 
 /// Stages the GLB: S1 with target `k` = `P_k − P_0` and the weights of every frame.

@@ -206,18 +206,29 @@ pub fn read_region(path: &Path, faces: usize) -> Result<Vec<usize>, Failure> {
                 Some("one 0-based face index per line; # starts a comment line".to_string()),
             )
         })?;
-        if f >= faces {
-            return Err(Failure::BadInput(
-                format!(
-                    "{} line {}: face {f} is out of range (the mesh has {faces} faces, 0..{})",
-                    path.display(),
-                    k + 1,
-                    faces.saturating_sub(1)
-                ),
-                Some("face indices are 0-based, in the order of the mesh file".to_string()),
-            ));
-        }
-        region.push(f);
+        region.push(region_face(
+            f,
+            faces,
+            &format!("{} line {}", path.display(), k + 1),
+        )?);
     }
     Ok(region)
+}
+
+/// Checks one face index of a region against the mesh's `faces`; `place` says where it
+/// was given (`FACES.txt line 3`, or `region[2]` for the Python package's arrays).
+///
+/// # Errors
+/// [`Failure::BadInput`] when `f` is not below `faces`.
+pub fn region_face(f: usize, faces: usize, place: &str) -> Result<usize, Failure> {
+    if f >= faces {
+        return Err(Failure::BadInput(
+            format!(
+                "{place}: face {f} is out of range (the mesh has {faces} faces, 0..{})",
+                faces.saturating_sub(1)
+            ),
+            Some("face indices are 0-based, in the order of the mesh file".to_string()),
+        ));
+    }
+    Ok(f)
 }

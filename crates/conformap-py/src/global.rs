@@ -1,0 +1,181 @@
+//! `global_map`: the CLI's `global` command on arrays. The region is given in memory, so
+//! the command's solve runs on it ([`GlobalArgs::solve_with_region`]) instead of reading a
+//! `--region` file; everything else is [`conformap_cli::pipeline::solve_and_report`]'s.
+//!
+//! The seamed layout comes back as libigl / trimesh keep seamed texture coordinates: `uv`
+//! `(k, 2)`, one row per corner class (a vertex, split where a seam passes through it),
+//! and `F_uv` `(m, 3)`, per face the row of each corner.
+
+use std::path::PathBuf;
+
+use conformap_cli::commands::global::{Conjugate, FormObjective, GlobalArgs};
+use conformap_cli::failure::Failure;
+use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved, TexCoords};
+use conformap_mesh::TriMesh;
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::arrays::{faces_array, mesh_input, to_array, MEMORY_PATH};
+use crate::errors::{bad_input, to_py, usage};
+use crate::maps::{choice, report_dict, run};
+use crate::mobius::region_faces;
+
+/// `global` with its region in memory.
+struct InMemory {
+    args: GlobalArgs,
+    region: Vec<usize>,
+}
+
+impl MapCommand for InMemory {
+    fn name(&self) -> &'static str {
+        self.args.name()
+    }
+    fn work(&self) -> &'static str {
+        self.args.work()
+    }
+    fn input(&self) -> &InputArgs {
+        self.args.input()
+    }
+    fn output(&self) -> &OutputArgs {
+        self.args.output()
+    }
+    fn check_usage(&self) -> Result<(), Failure> {
+        self.args.check_usage()
+    }
+    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
+        self.args.peak_bytes(mesh)
+    }
+    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
+        self.args.solve_with_region(input, self.region.clone())
+    }
+}
+
+/// Vertex indices from a Python sequence of integers; `name` names it in errors.
+fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
+    let values: Vec<i64> = obj.extract().map_err(|_| {
+        bad_input(format!(
+            "{name} must be a sequence of integer vertex indices (0-based)"
+        ))
+    })?;
+    values
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| {
+            usize::try_from(v)
+                .map_err(|_| bad_input(format!("{name}[{k}]: {v} is not a vertex index (0-based)")))
+        })
+        .collect()
+}
+
+/// Global conformal parameterization of a surface with handles by a holomorphic 1-form, as
+/// `conformap global`: returns `(uv, F_uv, report)`, the seamed layout (`uv` (k, 2) one
+/// row per corner class, `F_uv` (m, 3) per face the row of each corner); with
+/// `return_mesh=True` also the mesh it belongs to (the full documentation is in
+/// `conformap.pyi`).
+///
+/// Example: `uv, F_uv, report = conformap.global_map(V, F, "zeros", zeros=[10])`
+#[pyfunction]
+#[pyo3(signature = (v, f, objective = "uniform", *, form = None, region = None, zeros = None,
+    starts = None, conjugate = "nearest", root = None, return_mesh = false, strict = false,
+    max_memory = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn global_map<'py>(
+    py: Python<'py>,
+    v: &Bound<'py, PyAny>,
+    f: &Bound<'py, PyAny>,
+    objective: &str,
+    form: Option<usize>,
+    region: Option<&Bound<'py, PyAny>>,
+    zeros: Option<&Bound<'py, PyAny>>,
+    starts: Option<usize>,
+    conjugate: &str,
+    root: Option<usize>,
+    return_mesh: bool,
+    strict: bool,
+    max_memory: Option<u64>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let objective_value = choice::<FormObjective>("objective", objective)?;
+    let regional = matches!(
+        objective_value,
+        FormObjective::Emphasize | FormObjective::DeEmphasize
+    );
+    match (regional, region.is_some()) {
+        (true, false) => {
+            return Err(usage(format!(
+                "objective={objective:?} needs region=[face, ...] (0-based face indices)"
+            )))
+        }
+        (false, true) => {
+            return Err(usage(
+                "region is only used with objective=\"emphasize\" or \"de-emphasize\"",
+            ))
+        }
+        _ => {}
+    }
+    match (objective_value == FormObjective::Zeros, zeros.is_some()) {
+        (true, false) => {
+            return Err(usage(
+                "objective=\"zeros\" needs zeros=[vertex, ...] (0-based vertices)",
+            ))
+        }
+        (false, true) => return Err(usage("zeros is only used with objective=\"zeros\"")),
+        _ => {}
+    }
+    let conjugate = choice::<Conjugate>("conjugate", conjugate)?;
+    let zeros = zeros.map(|z| vertex_list(z, "zeros")).transpose()?;
+    let input = mesh_input(v, f)?;
+    let region = region
+        .map(|r| region_faces(r, input.mesh.num_faces()))
+        .transpose()?;
+    let mut args = GlobalArgs {
+        input: InputArgs::new(MEMORY_PATH),
+        output: OutputArgs::new(MEMORY_PATH),
+        form,
+        conjugate,
+        objective: objective_value,
+        // stands for the faces passed in memory, for the command's usage check
+        region: region.as_ref().map(|_| PathBuf::from("<region>")),
+        zeros,
+        starts,
+        root,
+        // topological optimization is the CLI's `--topology-opt`; not bound here yet
+        topology_opt: false,
+        max_slits: None,
+        slit_length: None,
+    };
+    args.output.strict = strict;
+    let cmd = InMemory {
+        args,
+        region: region.unwrap_or_default(),
+    };
+    let (solved, report) = run(py, &cmd, &input, max_memory, strict)?;
+    let uv: Vec<[f64; 2]> = solved.flat.0.iter().map(|p| [p[0], p[1]]).collect();
+    let (laid_out, tex_faces) = match &solved.uv {
+        TexCoords::PerCorner(c) => (&input.mesh, &c.faces),
+        TexCoords::Refined { mesh, uv } => (mesh, &uv.faces),
+        TexCoords::PerVertex(_) => {
+            return Err(bad_input("global: a per-vertex layout was not expected"))
+        }
+    };
+    if !return_mesh && laid_out.num_faces() != input.mesh.num_faces() {
+        return Err(to_py(Failure::BadInput(
+            format!(
+                "the double covering split boundary chords: the layout belongs to a refined \
+                 mesh of {} faces, not F's {}",
+                laid_out.num_faces(),
+                input.mesh.num_faces()
+            ),
+            Some("pass return_mesh=True to get that mesh with the layout".to_string()),
+        )));
+    }
+    let mut items: Vec<Bound<'py, PyAny>> = vec![
+        to_array(py, &uv)?.into_any(),
+        faces_array(py, tex_faces)?.into_any(),
+        report_dict(py, &report)?,
+    ];
+    if return_mesh {
+        items.push(to_array(py, laid_out.positions())?.into_any());
+        items.push(faces_array(py, laid_out.faces())?.into_any());
+    }
+    PyTuple::new(py, items)
+}

@@ -1,0 +1,211 @@
+//! `mobius`: the CLI's `mobius` command on arrays. The map and the region are given in
+//! memory, so the command's solve runs on them ([`MobiusArgs::solve_with`]) instead of
+//! reading `PARAM` and `--region` files; everything else (usage check, memory check, the
+//! report) is [`conformap_cli::pipeline::solve_and_report`]'s, as for `disk_map`.
+
+use std::path::{Path, PathBuf};
+
+use conformap_cli::commands::mobius::{Domain, MobiusArgs, Objective};
+use conformap_cli::commands::param::{region_face, MapFile};
+use conformap_cli::failure::Failure;
+use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved};
+use conformap_global::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
+use conformap_mesh::TriMesh;
+use numpy::PyArray2;
+use pyo3::prelude::*;
+
+use crate::arrays::{mesh_input, points, to_array, MEMORY_PATH};
+use crate::errors::{bad_input, to_py, usage};
+use crate::maps::{choice, report_dict, run};
+
+/// The path reports and errors give for a map passed as an array (as `metrics` does).
+pub const PARAM_PATH: &str = "<array>";
+
+/// `mobius` on a map and region in memory: the CLI's [`MobiusArgs`] with their solve fed
+/// from memory.
+struct InMemory {
+    args: MobiusArgs,
+    param: MapFile,
+    region: Option<Vec<usize>>,
+}
+
+impl MapCommand for InMemory {
+    fn name(&self) -> &'static str {
+        self.args.name()
+    }
+    fn work(&self) -> &'static str {
+        self.args.work()
+    }
+    fn input(&self) -> &InputArgs {
+        self.args.input()
+    }
+    fn output(&self) -> &OutputArgs {
+        self.args.output()
+    }
+    fn check_usage(&self) -> Result<(), Failure> {
+        self.args.check_usage()
+    }
+    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
+        self.args.peak_bytes(mesh)
+    }
+    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
+        self.args
+            .solve_with(input, &self.param, self.region.clone(), 0.0)
+    }
+}
+
+/// The faces of `region` (any integer sequence or array), each checked against `faces`
+/// with the CLI's message (`region[k]` standing for the file and line).
+pub fn region_faces(region: &Bound<'_, PyAny>, faces: usize) -> PyResult<Vec<usize>> {
+    let np = region.py().import("numpy")?;
+    let arr = np.call_method1("asarray", (region,))?;
+    let kind: String = arr.getattr("dtype")?.getattr("kind")?.extract()?;
+    let ndim: usize = arr.getattr("ndim")?.extract()?;
+    let size: usize = arr.getattr("size")?.extract()?;
+    // an empty list has dtype float64: let it through as no face
+    if ndim != 1 || (size > 0 && !"iu".contains(kind.as_str())) {
+        return Err(bad_input(format!(
+            "region must be a 1-D sequence of integer face indices, got {} with dtype {}",
+            arr.getattr("shape")?.str()?,
+            arr.getattr("dtype")?.str()?
+        )));
+    }
+    let values: Vec<i64> = if size == 0 {
+        Vec::new()
+    } else {
+        arr.call_method1("astype", ("int64",))?
+            .call_method0("tolist")?
+            .extract()?
+    };
+    values
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| {
+            let place = format!("region[{k}]");
+            let f = usize::try_from(f)
+                .map_err(|_| bad_input(format!("{place}: {f} is not a face index (0-based)")))?;
+            region_face(f, faces, &place).map_err(to_py)
+        })
+        .collect()
+}
+
+/// The map `param` as the CLI's [`MapFile`]: disk, `(n, 2)` values `u + i v` as a flat
+/// mesh's positions; sphere, `(n, 3)` unit vectors.
+fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<MapFile> {
+    let cols = match domain {
+        Domain::Disk => 2,
+        Domain::Sphere => 3,
+    };
+    let flat = points(param, "param", cols)?;
+    if flat.len() != cols * n {
+        return Err(bad_input(format!(
+            "param has {} rows, the mesh {n} vertices: one map point per vertex is needed",
+            flat.len() / cols
+        )));
+    }
+    let positions: Vec<[f64; 3]> = match domain {
+        Domain::Disk => flat.chunks_exact(2).map(|p| [p[0], p[1], 0.0]).collect(),
+        Domain::Sphere => flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+    };
+    if domain == Domain::Sphere {
+        let off = positions.iter().position(|p| {
+            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+            let on_sphere = (r - 1.0).abs() <= MAP_RADIUS_TOL; // false for NaN
+            !on_sphere
+        });
+        if let Some(k) = off {
+            let p = positions[k];
+            return Err(to_py(Failure::BadInput(
+                format!(
+                    "param row {k} ({}, {}, {}) is not on the unit sphere (radius tolerance \
+                     {MAP_RADIUS_TOL:e})",
+                    p[0], p[1], p[2]
+                ),
+                Some("pass the S of sphere_map (unit vectors, one per vertex)".to_string()),
+            )));
+        }
+    }
+    Ok(MapFile {
+        path: PathBuf::from(PARAM_PATH),
+        positions,
+        uv: None,
+        corner_uv: None,
+    })
+}
+
+/// The optimal Möbius transformation of a disk or sphere map, as `conformap mobius`:
+/// `param` (n, 2) in the unit disk or (n, 3) on the unit sphere, `region` face indices
+/// for the emphasizing objectives; returns `(param, report)` (the full documentation is in
+/// `conformap.pyi`).
+///
+/// Example: `moved, report = conformap.mobius(V, F, uv, objective="emphasize",
+/// region=range(100))`
+#[pyfunction]
+#[pyo3(signature = (v, f, param, domain = "disk", objective = "uniform", region = None, *,
+    max_area_scale = EMPHASIZE_MAX_AREA_SCALE, strict = false, max_memory = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn mobius<'py>(
+    py: Python<'py>,
+    v: &Bound<'py, PyAny>,
+    f: &Bound<'py, PyAny>,
+    param: &Bound<'py, PyAny>,
+    domain: &str,
+    objective: &str,
+    region: Option<&Bound<'py, PyAny>>,
+    max_area_scale: f64,
+    strict: bool,
+    max_memory: Option<u64>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
+    let domain = choice::<Domain>("domain", domain)?;
+    let objective_value = choice::<Objective>("objective", objective)?;
+    match (objective_value, region.is_some()) {
+        (Objective::Uniform, true) => {
+            return Err(usage(
+                "region is only used with objective=\"emphasize\" or \"emphasize-density\"",
+            ))
+        }
+        (Objective::Emphasize | Objective::EmphasizeDensity, false) => {
+            return Err(usage(format!(
+                "objective={objective:?} needs region=[face, ...] (0-based face indices)"
+            )))
+        }
+        _ => {}
+    }
+    if !(max_area_scale > 1.0 && max_area_scale.is_finite()) {
+        return Err(usage(format!(
+            "max_area_scale must be a finite number > 1, got {max_area_scale}"
+        )));
+    }
+    let input = mesh_input(v, f)?;
+    let n = input.mesh.num_vertices();
+    let param = param_map(param, domain, n)?;
+    let region = region
+        .map(|r| region_faces(r, input.mesh.num_faces()))
+        .transpose()?;
+    let mut args = MobiusArgs {
+        input: InputArgs::new(MEMORY_PATH),
+        param: PathBuf::from(PARAM_PATH),
+        output: OutputArgs::new(MEMORY_PATH),
+        domain,
+        objective: objective_value,
+        // stands for the faces passed in memory, for the command's usage check
+        region: region.as_ref().map(|_| Path::new("<region>").to_path_buf()),
+        max_area_scale,
+    };
+    args.output.strict = strict;
+    let cmd = InMemory {
+        args,
+        param,
+        region,
+    };
+    let (solved, report) = run(py, &cmd, &input, max_memory, strict)?;
+    let moved = &solved.flat.0[..n.min(solved.flat.0.len())];
+    let out = match domain {
+        Domain::Disk => {
+            let uv: Vec<[f64; 2]> = moved.iter().map(|p| [p[0], p[1]]).collect();
+            to_array(py, &uv)?
+        }
+        Domain::Sphere => to_array(py, moved)?,
+    };
+    Ok((out, report_dict(py, &report)?))
+}

@@ -1,0 +1,154 @@
+//! `morph`: the CLI's `morph` command on arrays, through the CLI's own pieces
+//! ([`MorphArgs::check_counts`], [`conformap_cli::commands::morph::solve`] over
+//! conformap-morph's public API, [`command_report`]), so errors and the report are the
+//! CLI's. Surfaces are named `<surfaces[k]>` and landmark lists `<landmarks[k]>` where the
+//! CLI names files.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use conformap_cli::commands::morph::{command_report, solve, MorphArgs};
+use conformap_cli::failure::Failure;
+use conformap_cli::report::StageTimings;
+use conformap_morph::{Landmarks, Surface};
+use numpy::{PyArray2, PyArray3, PyArrayMethods};
+use pyo3::prelude::*;
+
+use crate::arrays::{faces_array, mesh_input, to_py_json};
+use crate::errors::{bad_input, in_place, to_py, usage};
+
+/// The name of surface `k` in reports and errors.
+fn surface_name(k: usize) -> PathBuf {
+    PathBuf::from(format!("<surfaces[{k}]>"))
+}
+
+/// The name of landmark list `k` in reports and errors.
+fn landmarks_name(k: usize) -> PathBuf {
+    PathBuf::from(format!("<landmarks[{k}]>"))
+}
+
+/// Landmarks from a sequence of vertex indices, named by position (`"0"`, `"1"`, …), or
+/// from a mapping `name -> vertex` (in its order).
+fn landmarks(obj: &Bound<'_, PyAny>, k: usize) -> PyResult<Landmarks> {
+    let place = landmarks_name(k);
+    let pairs: Vec<(i64, String)> = if let Ok(map) = obj.cast::<pyo3::types::PyDict>() {
+        map.iter()
+            .map(|(name, v)| Ok((v.extract::<i64>()?, name.str()?.to_string())))
+            .collect::<PyResult<_>>()
+            .map_err(|_| {
+                bad_input(format!(
+                    "{}: a landmark dict maps names to integer vertex indices",
+                    place.display()
+                ))
+            })?
+    } else {
+        let vertices: Vec<i64> = obj.extract().map_err(|_| {
+            bad_input(format!(
+                "{}: landmarks must be a sequence of integer vertex indices (0-based) or a \
+                 dict name -> vertex",
+                place.display()
+            ))
+        })?;
+        vertices
+            .into_iter()
+            .enumerate()
+            .map(|(j, v)| (v, j.to_string()))
+            .collect()
+    };
+    let pairs = pairs
+        .into_iter()
+        .enumerate()
+        .map(|(j, (v, name))| {
+            u32::try_from(v).map(|v| (v, name)).map_err(|_| {
+                bad_input(format!(
+                    "{}[{j}]: {v} is not a vertex index (0-based)",
+                    place.display()
+                ))
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Landmarks::new(pairs).map_err(|e| to_py(Failure::input(e).in_file(&place)))
+}
+
+/// `(frames, F, report)`: frames `(N, n, 3)` float64, `F` `(m, 3)` int64.
+pub type MorphArrays<'py> = (
+    Bound<'py, PyArray3<f64>>,
+    Bound<'py, PyArray2<i64>>,
+    Bound<'py, PyAny>,
+);
+
+/// A morph through two or more disk-like surfaces with landmarks, as `conformap morph`:
+/// `surfaces` `[(V1, F1), (V2, F2), …]`, `landmarks` one list of vertex indices (or dict
+/// name → vertex) per surface; returns `(frames (N, n, 3), F, report)` (the full
+/// documentation is in `conformap.pyi`).
+///
+/// Example: `P, F, report = conformap.morph([(V1, F1), (V2, F2)], [L1, L2], frames=24)`
+#[pyfunction]
+#[pyo3(signature = (surfaces, landmarks, frames, *, lambda_ = None, hard = false))]
+pub fn morph<'py>(
+    py: Python<'py>,
+    surfaces: &Bound<'py, PyAny>,
+    landmarks: &Bound<'py, PyAny>,
+    frames: usize,
+    lambda_: Option<f64>,
+    hard: bool,
+) -> PyResult<MorphArrays<'py>> {
+    if hard && lambda_.is_some() {
+        return Err(usage("lambda_ and hard=True exclude each other"));
+    }
+    let surfaces: Vec<Bound<'py, PyAny>> = surfaces
+        .try_iter()?
+        .collect::<PyResult<_>>()
+        .map_err(|_| bad_input("surfaces must be a sequence of (V, F) pairs"))?;
+    let lists: Vec<Bound<'py, PyAny>> = landmarks
+        .try_iter()?
+        .collect::<PyResult<_>>()
+        .map_err(|_| bad_input("landmarks must be a sequence of landmark lists"))?;
+    let args = MorphArgs {
+        surfaces: (0..surfaces.len()).map(surface_name).collect(),
+        landmarks: (0..lists.len()).map(landmarks_name).collect(),
+        frames,
+        output: PathBuf::new(),
+        lambda: lambda_,
+        hard,
+        report: None,
+    };
+    args.check_counts().map_err(to_py)?;
+    let mut keys = Vec::with_capacity(surfaces.len());
+    for (k, (pair, lms)) in surfaces.iter().zip(&lists).enumerate() {
+        let (v, f): (Bound<'py, PyAny>, Bound<'py, PyAny>) = pair
+            .extract()
+            .map_err(|_| bad_input(format!("surfaces[{k}] must be a (V, F) pair")))?;
+        let place = surface_name(k).display().to_string();
+        let input = mesh_input(&v, &f).map_err(|e| in_place(py, e, &place))?;
+        keys.push(Surface::new(input.mesh, self::landmarks(lms, k)?));
+    }
+    let (solution, report, positions) = py
+        .detach(|| {
+            let t = Instant::now();
+            let solution = solve(&args, &keys)?;
+            let m = &solution.morph;
+            let positions: Vec<f64> = solution
+                .times
+                .iter()
+                .flat_map(|&t| m.frame(t))
+                .flatten()
+                .collect();
+            let timings = StageTimings {
+                total: t.elapsed().as_secs_f64() * 1e3,
+                ..StageTimings::default()
+            };
+            let report = command_report(&args, &keys, &solution, timings);
+            Ok::<_, Failure>((solution, report, positions))
+        })
+        .map_err(to_py)?;
+    let m = &solution.morph;
+    let n = positions.len() / (3 * frames.max(1));
+    let frames_array = numpy::PyArray1::from_vec(py, positions).reshape([frames, n, 3])?;
+    let value = serde_json::to_value(&report).map_err(|e| bad_input(e.to_string()))?;
+    Ok((
+        frames_array,
+        faces_array(py, m.faces())?,
+        to_py_json(py, &value)?,
+    ))
+}
