@@ -89,7 +89,8 @@ def map_one(path: str, out_dir: str, command: str, ext=None, skip_existing=False
             "converged": report["solver"]["converged"],
             "metrics": report["metrics"],
             "timings_ms": timings,
-            "memory": report["memory"],
+            # the worker process's peak so far (tasks share it), as batch says with --jobs > 1
+            "memory": {**report["memory"], "peak_rss_scope": "process"},
         }
     except (conformap.ConformapError, conformap.NumericalError) as e:
         message = str(e).splitlines()[0]
