@@ -66,3 +66,33 @@ def torus(n=24, m=12, R=2.0, r=0.7):
             a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
             F += [[a, b, c], [a, c, d]]
     return V.reshape(-1, 3), np.array(F, dtype=np.int64)
+
+
+def assert_gil_released(call):
+    """Runs `call()` while a Python thread ticks about once a millisecond, and asserts that
+    the thread kept running: with the GIL held it could not run at all during the call;
+    released, it ticks about once a millisecond (a loaded machine is allowed a factor of 20)."""
+    import threading
+    import time
+
+    ticks = 0
+    stop = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not stop.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    time.sleep(0.05)
+    start = ticks
+    t0 = time.perf_counter()
+    call()
+    elapsed = time.perf_counter() - t0
+    during = ticks - start
+    stop.set()
+    t.join()
+    assert elapsed > 0.05
+    assert during > elapsed * 1000 / 20, (during, elapsed)
