@@ -7,8 +7,7 @@
 use conformap_mesh::TriMesh;
 use conformap_testkit::{read_plain_obj, shared_mesh_or_skip};
 
-use super::search::random_directions;
-use super::tests::{direct_energy, half_region, surface_shares};
+use super::tests::{half_region, sampled_energy_range, surface_shares};
 use super::{FormSearchOptions, Objective};
 use crate::{global_map, GlobalMapOptions};
 
@@ -21,11 +20,6 @@ const OTHER_SEEDS: [u64; 5] = [1, 2, 3, 4, 5];
 fn shared(name: &str, test: &str) -> Option<TriMesh> {
     let path = shared_mesh_or_skip(name, test)?;
     Some(read_plain_obj(&path).expect("shared mesh"))
-}
-
-fn unit(v: Vec<f64>) -> Vec<f64> {
-    let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    v.into_iter().map(|x| x / n).collect()
 }
 
 fn uniform_beats_sampling(name: &str) {
@@ -43,13 +37,7 @@ fn uniform_beats_sampling(name: &str) {
         );
     }
     let s = surface_shares(&map);
-    let samples: Vec<f64> = random_directions(o.coefficients.len(), DENSE_SAMPLES, 2024)
-        .into_iter()
-        .map(|d| direct_energy(&map, &s, &unit(d)))
-        .collect();
-    let (lo, hi) = samples
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+    let (lo, hi) = sampled_energy_range(&map, &s, DENSE_SAMPLES, 2024);
     assert!(
         o.uniformity <= lo,
         "{name}: sample {lo:e} < optimum {:e}",

@@ -49,7 +49,21 @@ pub(crate) fn surface_shares(map: &GlobalMap) -> Vec<f64> {
     s[..map.input_faces].iter().map(|x| x / total).collect()
 }
 
-fn unit(v: Vec<f64>) -> Vec<f64> {
+/// `(min, max)` of the direct uniformity energy over `count` seeded random unit
+/// coefficient vectors (the independent sampling the optimum is checked against).
+pub(crate) fn sampled_energy_range(
+    map: &GlobalMap,
+    s_share: &[f64],
+    count: usize,
+    seed: u64,
+) -> (f64, f64) {
+    random_directions(map.objective.coefficients.len(), count, seed)
+        .into_iter()
+        .map(|d| direct_energy(map, s_share, &unit(d)))
+        .fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)))
+}
+
+pub(crate) fn unit(v: Vec<f64>) -> Vec<f64> {
     let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
     v.into_iter().map(|x| x / n).collect()
 }
@@ -137,13 +151,7 @@ fn uniform_optimum_beats_basis_forms_and_dense_sampling_on_eightsim() {
             o.uniformity
         );
     }
-    let samples: Vec<f64> = random_directions(o.coefficients.len(), SAMPLES, 99)
-        .into_iter()
-        .map(|d| direct_energy(&map, &s, &unit(d)))
-        .collect();
-    let (lo, hi) = samples
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+    let (lo, hi) = sampled_energy_range(&map, &s, SAMPLES, 99);
     assert!(
         o.uniformity <= lo,
         "sample {lo:e} < optimum {:e}",
