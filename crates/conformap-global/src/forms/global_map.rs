@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use crate::double_cover::double_cover_surface;
 use crate::forms::cohomology::{cohomology_basis, edge_weights};
 use crate::forms::conjugate::{conjugation, ConjugateMethod};
-use crate::forms::harmonic::{harmonic_projection, ms};
+use crate::forms::harmonic::{ms, HarmonicFactor};
 use crate::forms::layout::integrate;
 use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
@@ -28,7 +28,8 @@ use crate::GlobalError;
 pub struct GlobalTimings {
     /// Double covering (surfaces with boundary only).
     pub double_cover: f64,
-    /// Tree–cotree, cut graph, cut mesh, cohomology basis.
+    /// Tree–cotree, cut graph, cut mesh, cohomology basis (concurrent with `assemble` and
+    /// `factor`, on the other core; the total is not their sum).
     pub topology: f64,
     /// Assembling the cotangent Laplacian and its reduced block.
     pub assemble: f64,
@@ -238,15 +239,29 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         (mesh.clone(), mesh.num_vertices(), mesh.num_faces(), 0)
     };
     timings.double_cover = ms(t);
-    let t = Instant::now();
-    let basis = homology_basis(&surface, options.root)?;
+    // The Laplacian depends on the surface alone: it is assembled and factored while the
+    // tree–cotree, the cut and the cohomology basis run on the other core. The pinned vertex
+    // is the basis's root (`homology_basis` clamps the requested root the same way).
+    let pinned = options
+        .root
+        .unwrap_or(0)
+        .min(surface.num_vertices().saturating_sub(1)) as u32;
+    let (topology, factor) = rayon::join(
+        || -> Result<_, GlobalError> {
+            let t = Instant::now();
+            let basis = homology_basis(&surface, options.root)?;
+            let on_cut = cut_graph(&surface, &basis);
+            let cut = cut_mesh(&surface, &basis, on_cut)?;
+            let (closed, closedness_residual) = cohomology_basis(&surface, &basis);
+            let weights = edge_weights(&surface, &basis);
+            Ok((basis, cut, closed, closedness_residual, weights, ms(t)))
+        },
+        || HarmonicFactor::new(&surface, pinned, &options.cholesky),
+    );
+    let (basis, cut, closed, closedness_residual, weights, topology_ms) = topology?;
+    timings.topology = topology_ms;
     let n = basis.generators.len();
     let surface_genus = n / 2;
-    let on_cut = cut_graph(&surface, &basis);
-    let cut = cut_mesh(&surface, &basis, on_cut)?;
-    let (closed, closedness_residual) = cohomology_basis(&surface, &basis);
-    let weights = edge_weights(&surface, &basis);
-    timings.topology = ms(t);
     if let Some(k) = options.form {
         if k >= n {
             return Err(GlobalError::InvalidOption {
@@ -255,7 +270,11 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
             });
         }
     }
-    let harmonic = harmonic_projection(&surface, &basis, &weights, &closed, &options.cholesky)?;
+    let factor = match factor? {
+        f if basis.root == pinned => f,
+        _ => HarmonicFactor::new(&surface, basis.root, &options.cholesky)?,
+    };
+    let harmonic = factor.project(&surface, &basis, &weights, &closed)?;
     timings.assemble = harmonic.assemble_ms;
     timings.factor = harmonic.factor.analyse_ms + harmonic.factor.factor_ms;
     timings.solve = harmonic.solve_ms;

@@ -41,74 +41,102 @@ fn divergence(mesh: &TriMesh, basis: &HomologyBasis, weights: &[f64], w: &[f64])
     div
 }
 
-/// Projects each closed form of `closed` onto its harmonic representative (same
-/// cohomology class: `h − ω = d f` is exact, so every period is kept).
-///
-/// # Errors
-/// [`GlobalError::Operator`] when the reduced Laplacian is not positive definite (strongly
-/// negative cotangent weights); [`GlobalError::NonFinite`] if a solve produces a
-/// non-finite value.
-pub fn harmonic_projection(
-    mesh: &TriMesh,
-    basis: &HomologyBasis,
-    weights: &[f64],
-    closed: &[Cochain],
-    options: &CholeskyOptions,
-) -> Result<HarmonicSolve, GlobalError> {
-    let t0 = Instant::now();
-    let pinned = basis.root as usize;
-    let l = cotan_laplacian(mesh);
-    let part = Partition::new(mesh.num_vertices(), &[pinned as u32]);
-    let blocks = LaplacianBlocks::new(&l, &part);
-    let assemble_ms = ms(t0);
-    let chol = Cholesky::factor_with(&blocks.ii, options)?;
-    let t1 = Instant::now();
-    let ni = part.interior.len();
-    let k = closed.len();
-    let divs: Vec<Vec<f64>> = closed
-        .iter()
-        .map(|w| divergence(mesh, basis, weights, w))
-        .collect();
-    let mut rhs = Vec::with_capacity(ni * k);
-    for d in &divs {
-        rhs.extend(part.interior.iter().map(|&v| d[v as usize]));
+/// The reduced cotangent Laplacian of a closed surface (one vertex pinned), assembled and
+/// factored once. It depends on the surface alone, not on its homology, so
+/// [`crate::global_map`] factors it while the tree–cotree and the cut run on the other core.
+pub struct HarmonicFactor {
+    part: Partition,
+    chol: Cholesky,
+    /// Milliseconds assembling `L` and its reduced block.
+    pub assemble_ms: f64,
+}
+
+impl HarmonicFactor {
+    /// Assembles and factors the cotangent Laplacian of `mesh` with vertex `pinned` fixed.
+    ///
+    /// # Errors
+    /// [`GlobalError::Operator`] when the reduced Laplacian is not positive definite
+    /// (strongly negative cotangent weights).
+    pub fn new(
+        mesh: &TriMesh,
+        pinned: u32,
+        options: &CholeskyOptions,
+    ) -> Result<Self, GlobalError> {
+        let t0 = Instant::now();
+        let l = cotan_laplacian(mesh);
+        let part = Partition::new(mesh.num_vertices(), &[pinned]);
+        let blocks = LaplacianBlocks::new(&l, &part);
+        let assemble_ms = ms(t0);
+        let chol = Cholesky::factor_with(&blocks.ii, options)?;
+        Ok(Self {
+            part,
+            chol,
+            assemble_ms,
+        })
     }
-    chol.solve_in_place(&mut rhs, k);
-    let mut forms = Vec::with_capacity(k);
-    let mut codifferential_residual = 0.0f64;
-    for (i, w) in closed.iter().enumerate() {
-        let f = part.assemble(&rhs[i * ni..(i + 1) * ni], &[0.0]);
-        if let Some(v) = f.iter().position(|x| !x.is_finite()) {
-            return Err(GlobalError::NonFinite {
-                vertex: v,
-                stage: "harmonic projection",
-            });
-        }
-        let h: Cochain = basis
-            .edges
-            .halfedge
+
+    /// Projects each closed form of `closed` onto its harmonic representative (same
+    /// cohomology class: `h − ω = d f` is exact, so every period is kept). `basis` must be a
+    /// homology basis of the factored mesh rooted at the pinned vertex.
+    ///
+    /// # Errors
+    /// [`GlobalError::NonFinite`] if a solve produces a non-finite value.
+    pub fn project(
+        &self,
+        mesh: &TriMesh,
+        basis: &HomologyBasis,
+        weights: &[f64],
+        closed: &[Cochain],
+    ) -> Result<HarmonicSolve, GlobalError> {
+        let t1 = Instant::now();
+        let part = &self.part;
+        let ni = part.interior.len();
+        let k = closed.len();
+        let divs: Vec<Vec<f64>> = closed
             .iter()
-            .zip(w)
-            .map(|(&he, &x)| {
-                let (a, b) = mesh.halfedge_vertices(he as usize);
-                x + f[b as usize] - f[a as usize]
-            })
+            .map(|w| divergence(mesh, basis, weights, w))
             .collect();
-        let scale = divs[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let after = divergence(mesh, basis, weights, &h);
-        let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if scale > 0.0 {
-            codifferential_residual = codifferential_residual.max(res / scale);
+        let mut rhs = Vec::with_capacity(ni * k);
+        for d in &divs {
+            rhs.extend(part.interior.iter().map(|&v| d[v as usize]));
         }
-        forms.push(h);
+        self.chol.solve_in_place(&mut rhs, k);
+        let mut forms = Vec::with_capacity(k);
+        let mut codifferential_residual = 0.0f64;
+        for (i, w) in closed.iter().enumerate() {
+            let f = part.assemble(&rhs[i * ni..(i + 1) * ni], &[0.0]);
+            if let Some(v) = f.iter().position(|x| !x.is_finite()) {
+                return Err(GlobalError::NonFinite {
+                    vertex: v,
+                    stage: "harmonic projection",
+                });
+            }
+            let h: Cochain = basis
+                .edges
+                .halfedge
+                .iter()
+                .zip(w)
+                .map(|(&he, &x)| {
+                    let (a, b) = mesh.halfedge_vertices(he as usize);
+                    x + f[b as usize] - f[a as usize]
+                })
+                .collect();
+            let scale = divs[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let after = divergence(mesh, basis, weights, &h);
+            let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if scale > 0.0 {
+                codifferential_residual = codifferential_residual.max(res / scale);
+            }
+            forms.push(h);
+        }
+        Ok(HarmonicSolve {
+            forms,
+            codifferential_residual,
+            factor: self.chol.stats().clone(),
+            assemble_ms: self.assemble_ms,
+            solve_ms: ms(t1),
+        })
     }
-    Ok(HarmonicSolve {
-        forms,
-        codifferential_residual,
-        factor: chol.stats().clone(),
-        assemble_ms,
-        solve_ms: ms(t1),
-    })
 }
 
 /// Milliseconds since `t`.
