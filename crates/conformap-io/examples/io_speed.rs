@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 /// Runs per measurement; the median is printed.
-const RUNS: usize = 3;
+const RUNS: usize = 5;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

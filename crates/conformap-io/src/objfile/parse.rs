@@ -106,9 +106,19 @@ pub(crate) fn count(chunk: &[u8]) -> Counts {
     c
 }
 
-/// Parses a chunk. `before`: lines and elements before it; `total`: in the whole file.
-pub(crate) fn parse_chunk(chunk: &[u8], before: Counts, total: Counts) -> Parsed {
+/// Parses a chunk. `before`: lines and elements before it; `own`: in it ([`count`]);
+/// `total`: in the whole file.
+pub(crate) fn parse_chunk(chunk: &[u8], before: Counts, own: Counts, total: Counts) -> Parsed {
     let mut p = Parsed::default();
+    // capacity from the chunk's own counts (the first pass), faces guessed as one
+    // triangle per remaining line: no reallocation on the usual files
+    p.positions.reserve(own.v);
+    p.vertex_lines.reserve(own.v);
+    p.texcoords.reserve(own.vt);
+    let rest = own.lines.saturating_sub(own.v + own.vt + own.vn);
+    p.faces.reserve(rest);
+    p.face_uv.reserve(rest);
+    p.face_lines.reserve(rest);
     let mut seen = before;
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for line in Lines::new(chunk) {
@@ -140,6 +150,12 @@ fn statement(
     };
     match keyword {
         b"v" => {
+            if let Some(pos) = fast_floats::<3>(rest) {
+                p.positions.push(pos);
+                p.vertex_lines.push(lineno);
+                seen.v += 1;
+                return Ok(());
+            }
             let mut x = [0.0; 6];
             let n = numbers("v", &mut rest, &mut x, &[3, 4, 6])?;
             let mut pos = [x[0], x[1], x[2]];
@@ -155,20 +171,32 @@ fn statement(
             seen.v += 1;
         }
         b"vt" => {
+            if let Some(t) = fast_floats::<2>(rest) {
+                p.texcoords.push(t);
+                seen.vt += 1;
+                return Ok(());
+            }
             let mut x = [0.0; 3];
             numbers("vt", &mut rest, &mut x, &[2, 3])?;
             p.texcoords.push([x[0], x[1]]);
             seen.vt += 1;
         }
         b"vn" => {
+            if fast_floats::<3>(rest).is_some() {
+                seen.vn += 1;
+                return Ok(());
+            }
             let mut x = [0.0; 3];
             numbers("vn", &mut rest, &mut x, &[3])?;
             seen.vn += 1;
         }
         b"f" => {
             corners.clear();
-            while let Some(token) = next_word(&mut rest) {
-                corners.push(parse_corner(token, *seen, total)?);
+            if !fast_corners(rest, *seen, total, corners)? {
+                corners.clear();
+                while let Some(token) = next_word(&mut rest) {
+                    corners.push(parse_corner(token, *seen, total)?);
+                }
             }
             if corners.len() < 3 {
                 return Err(ObjProblem::TooFewCorners {
@@ -230,6 +258,108 @@ fn numbers(
         return Err(bad_number(keyword));
     }
     Ok(n)
+}
+
+/// `s` past its leading blanks.
+fn skip_blanks(s: &[u8]) -> &[u8] {
+    let start = s.iter().position(|&b| !is_blank(b)).unwrap_or(s.len());
+    &s[start..]
+}
+
+/// The fast path of a `v`/`vt`/`vn` line: exactly `N` numbers, each read where it starts
+/// (`parse_partial` finds its end, so the bytes are scanned once) and ended by a blank or
+/// the line's end. `None` for anything else (another count, a bad number), which the
+/// general path then reads or reports; on the lines it accepts both paths give the same
+/// bits, `parse_partial` being `parse` of the longest number at the start.
+fn fast_floats<const N: usize>(mut s: &[u8]) -> Option<[f64; N]> {
+    let mut out = [0.0; N];
+    for slot in &mut out {
+        s = skip_blanks(s);
+        let (x, len) = fast_float2::parse_partial::<f64, _>(s).ok()?;
+        s = &s[len..];
+        if s.first().is_some_and(|&b| !is_blank(b)) {
+            return None;
+        }
+        *slot = x;
+    }
+    s.iter().all(|&b| is_blank(b)).then_some(out)
+}
+
+/// An optionally signed decimal integer at the start of `s`: its value and length, `None`
+/// without digits or on overflow (the general path then reports the token).
+fn leading_int(s: &[u8]) -> Option<(i64, usize)> {
+    let negative = s.first() == Some(&b'-');
+    let start = usize::from(negative || s.first() == Some(&b'+'));
+    // up to 18 digits cannot overflow an i64; longer runs take the checked path
+    let mut x: i64 = 0;
+    let mut len = start;
+    while let Some(&d) = s.get(len) {
+        if !d.is_ascii_digit() || len - start == 18 {
+            break;
+        }
+        x = 10 * x + i64::from(d - b'0');
+        len += 1;
+    }
+    if s.get(len).is_some_and(u8::is_ascii_digit) {
+        let digits = s[start..].iter().take_while(|b| b.is_ascii_digit()).count();
+        return Some((parse_int(&s[..start + digits])?, start + digits));
+    }
+    if len == start {
+        return None;
+    }
+    Some((if negative { -x } else { x }, len))
+}
+
+/// The fast path of an `f` line: corners `v`, `v/vt`, `v//vn` or `v/vt/vn` read in one
+/// scan into `corners`. `Ok(false)` when a token has another shape, for the general path
+/// to read or report; index errors are the general path's errors.
+fn fast_corners(
+    mut s: &[u8],
+    seen: Counts,
+    total: Counts,
+    corners: &mut Vec<(u32, u32)>,
+) -> Result<bool, ObjProblem> {
+    loop {
+        s = skip_blanks(s);
+        if s.is_empty() {
+            return Ok(true);
+        }
+        let Some((v, len)) = leading_int(s) else {
+            return Ok(false);
+        };
+        s = &s[len..];
+        let mut vt = None;
+        let mut vn = None;
+        if s.first() == Some(&b'/') {
+            s = &s[1..];
+            if let Some((t, len)) = leading_int(s) {
+                vt = Some(t);
+                s = &s[len..];
+            }
+            if s.first() == Some(&b'/') {
+                s = &s[1..];
+                let Some((nrm, len)) = leading_int(s) else {
+                    return Ok(false);
+                };
+                vn = Some(nrm);
+                s = &s[len..];
+            } else if vt.is_none() {
+                return Ok(false); // `v/` alone
+            }
+        }
+        if s.first().is_some_and(|&b| !is_blank(b)) {
+            return Ok(false);
+        }
+        let vi = resolve(v, (seen.v, total.v), "vertex")?;
+        let ti = match vt {
+            Some(t) => resolve(t, (seen.vt, total.vt), "texture coordinate")?,
+            None => NO_UV,
+        };
+        if let Some(nrm) = vn {
+            resolve(nrm, (seen.vn, total.vn), "normal")?;
+        }
+        corners.push((vi, ti));
+    }
 }
 
 /// Parses `v`, `v/vt`, `v//vn` or `v/vt/vn`; returns the 0-based vertex and `vt` indices.
@@ -323,7 +453,7 @@ mod tests {
 
     fn one(text: &str) -> Parsed {
         let total = count(text.as_bytes());
-        parse_chunk(text.as_bytes(), Counts::default(), total)
+        parse_chunk(text.as_bytes(), Counts::default(), total, total)
     }
 
     #[test]
@@ -414,14 +544,111 @@ mod tests {
         }
     }
 
+    /// The fast paths give exactly what the general path gives, or step aside: numbers and
+    /// corners of every shape the general path accepts or rejects.
+    #[test]
+    fn fast_paths_agree_with_the_general_path() {
+        let numbers_tokens = [
+            "0",
+            "-0.0",
+            "1.5",
+            "+3E+2",
+            ".5",
+            "7.",
+            "1e-400",
+            "inf",
+            "-Infinity",
+            "nan",
+            "1e",
+            "1.2.3",
+            "0x10",
+            "1,5",
+            "2.2250738585072011e-308",
+            "123456789012345678901",
+        ];
+        for a in numbers_tokens {
+            for b in numbers_tokens {
+                for sep in [" ", "\t", "  "] {
+                    let line = format!("{sep}{a}{sep}{b}{sep}1.25{sep}");
+                    let fast = fast_floats::<3>(line.as_bytes());
+                    let mut rest = line.as_bytes();
+                    let mut x = [0.0; 6];
+                    let general = numbers("v", &mut rest, &mut x, &[3]);
+                    match (fast, general) {
+                        (Some(f), Ok(3)) => {
+                            assert_eq!(
+                                f.map(f64::to_bits),
+                                [x[0], x[1], x[2]].map(f64::to_bits),
+                                "{line}"
+                            )
+                        }
+                        (Some(_), g) => panic!("fast accepted {line:?}, general gave {g:?}"),
+                        (None, Ok(_)) => {} // stepping aside is always allowed
+                        (None, Err(_)) => {}
+                    }
+                }
+            }
+        }
+        let seen = Counts {
+            lines: 0,
+            v: 5,
+            vt: 4,
+            vn: 3,
+        };
+        let total = Counts {
+            lines: 0,
+            v: 9,
+            vt: 9,
+            vn: 9,
+        };
+        let corner_tokens = [
+            "1",
+            "-1",
+            "+2",
+            "9",
+            "10",
+            "0",
+            "-6",
+            "1/2",
+            "1//3",
+            "1/2/3",
+            "1/",
+            "1//",
+            "1/2/",
+            "/1",
+            "1/x",
+            "x",
+            "1/2/3/4",
+            "-1/-1/-1",
+            "99999999999999999999",
+            "1/-5",
+        ];
+        for a in corner_tokens {
+            for b in corner_tokens {
+                let line = format!(" {a} {b}\t3 ");
+                let mut corners = Vec::new();
+                let fast = fast_corners(line.as_bytes(), seen, total, &mut corners);
+                let mut rest = line.as_bytes();
+                let general: Result<Vec<_>, _> = std::iter::from_fn(|| next_word(&mut rest))
+                    .map(|t| parse_corner(t, seen, total))
+                    .collect();
+                match fast {
+                    Ok(true) => assert_eq!(Ok(corners), general, "{line}"),
+                    Ok(false) => {}
+                    Err(e) => assert_eq!(Err(e), general, "{line}"),
+                }
+            }
+        }
+    }
+
     #[test]
     fn non_utf8_only_matters_in_statements() {
         let mut bytes = b"# caf\xe9\no caf\xe9\nv 0 0 0\n".to_vec();
-        let s = parse_chunk(&bytes, Counts::default(), count(&bytes));
+        let s = parse_chunk(&bytes, Counts::default(), count(&bytes), count(&bytes));
         assert!(s.error.is_none());
         bytes.extend_from_slice(b"v 1 \xe9 0\n");
         let total = count(&bytes);
-        let s = parse_chunk(&bytes, Counts::default(), total);
+        let s = parse_chunk(&bytes, Counts::default(), total, total);
         assert!(matches!(s.error, Some((4, ObjProblem::NotUtf8))));
     }
 }

@@ -45,14 +45,14 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
     let parsed: Vec<Parsed> = if chunks.len() > 1 {
         chunks
             .par_iter()
-            .zip(before.par_iter())
-            .map(|(c, &b)| parse_chunk(c, b, total))
+            .zip(before.par_iter().zip(counts.par_iter()))
+            .map(|(c, (&b, &own))| parse_chunk(c, b, own, total))
             .collect()
     } else {
         chunks
             .iter()
-            .zip(&before)
-            .map(|(c, &b)| parse_chunk(c, b, total))
+            .zip(before.iter().zip(&counts))
+            .map(|(c, (&b, &own))| parse_chunk(c, b, own, total))
             .collect()
     };
     // each chunk stops at its first bad line, so the first chunk with one has the file's
@@ -208,7 +208,7 @@ mod tests {
         assert!(text.len() > PARALLEL_MIN_BYTES);
         let bytes = text.as_bytes();
         let whole = count(bytes);
-        let one = parse_chunk(bytes, Counts::default(), whole);
+        let one = parse_chunk(bytes, Counts::default(), whole, whole);
         let raw = read_obj_raw(bytes, Path::new("t.obj")).unwrap();
         assert_eq!(raw.positions, one.positions);
         assert_eq!(raw.faces, one.faces);

@@ -1,13 +1,18 @@
 //! OBJ writing. Numbers use the shortest decimal that reads back as the same f64 (`ryu`),
 //! so reading the file back gives the same bits; indices use `itoa`. Large meshes are
-//! formatted in parallel blocks (rayon), returned as parts in file order for one
-//! sequential write.
+//! formatted in parallel blocks (rayon): the blocks of every section (`v`, `vt`, `f`) form
+//! one parallel job list, so both cores stay busy across the sections, and the parts are
+//! returned in file order for one sequential write.
 
 use rayon::prelude::*;
 
 /// Rows (vertices, texture coordinates or faces) formatted per block: large enough that a
-/// block is far more work than handing it to a thread, small enough to balance two cores.
-const BLOCK_ROWS: usize = 1 << 15;
+/// block (~0.5 ms) is far more work than handing it to a thread, small enough that the
+/// last blocks balance two cores.
+const BLOCK_ROWS: usize = 1 << 13;
+
+/// One block of rows, formatted when called.
+type Block<'a> = Box<dyn Fn() -> Vec<u8> + Send + Sync + 'a>;
 
 /// `v` lines and 1-based `f a b c` lines, as parts to be written in order.
 pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
@@ -16,9 +21,8 @@ pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>
         points.len(),
         faces.len()
     );
-    let mut parts = vec![header.into_bytes()];
-    parts.extend(blocks(points, 3 * 26, push_vertex));
-    parts.extend(blocks(faces, 3 * 9, |out, f| {
+    let mut jobs = section(points, 3 * 26, push_vertex);
+    jobs.extend(section(faces, 3 * 9, |out, f| {
         out.push(b'f');
         for &i in f {
             out.push(b' ');
@@ -26,7 +30,7 @@ pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>
         }
         out.push(b'\n');
     }));
-    parts
+    with_header(header, jobs)
 }
 
 /// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines, as parts to be
@@ -41,9 +45,11 @@ pub(crate) fn encode_obj_with_uv(
         points.len(),
         faces.len()
     );
-    let mut parts = vertex_and_vt_parts(header, points, uv);
-    parts.extend(blocks(faces, 3 * 18, |out, f| push_face_with_vt(out, f, f)));
-    parts
+    let mut jobs = vertex_and_vt_blocks(points, uv);
+    jobs.extend(section(faces, 3 * 18, |out, f| {
+        push_face_with_vt(out, f, f)
+    }));
+    with_header(header, jobs)
 }
 
 /// `v` lines, the `vt` lines of a seamed map, and `f a/ta b/tb c/tc` lines (`uv_faces[f]`
@@ -60,27 +66,26 @@ pub(crate) fn encode_obj_with_corner_uv(
         faces.len(),
         texcoords.len()
     );
-    let mut parts = vertex_and_vt_parts(header, points, texcoords);
     let rows: Vec<([u32; 3], [u32; 3])> = faces
         .iter()
         .copied()
         .zip(uv_faces.iter().copied())
         .collect();
-    parts.extend(blocks(&rows, 3 * 18, |out, (f, t)| {
+    let mut jobs = vertex_and_vt_blocks(points, texcoords);
+    jobs.extend(section(&rows, 3 * 18, |out, (f, t)| {
         push_face_with_vt(out, f, t)
     }));
-    parts
+    with_header(header, jobs)
 }
 
-/// The header, the `v` lines and the `vt` lines.
-fn vertex_and_vt_parts(header: String, points: &[[f64; 3]], vt: &[[f64; 2]]) -> Vec<Vec<u8>> {
-    let mut parts = vec![header.into_bytes()];
-    parts.extend(blocks(points, 3 * 26, push_vertex));
-    parts.extend(blocks(vt, 2 * 26, |out, t| {
+/// The blocks of the `v` lines and the `vt` lines.
+fn vertex_and_vt_blocks<'a>(points: &'a [[f64; 3]], vt: &'a [[f64; 2]]) -> Vec<Block<'a>> {
+    let mut jobs = section(points, 3 * 26, push_vertex);
+    jobs.extend(section(vt, 2 * 26, |out, t| {
         out.extend_from_slice(b"vt");
         push_floats(out, t);
     }));
-    parts
+    jobs
 }
 
 /// `f v/vt v/vt v/vt` (1-based) and the line end.
@@ -95,24 +100,35 @@ fn push_face_with_vt(out: &mut Vec<u8>, f: &[u32; 3], t: &[u32; 3]) {
     out.push(b'\n');
 }
 
-/// Formats `rows` with `line`, in parallel blocks of [`BLOCK_ROWS`] when there are
-/// several; `guess` is the expected bytes per row (capacity only).
-fn blocks<T: Sync>(
-    rows: &[T],
+/// The blocks of [`BLOCK_ROWS`] rows of one section, each formatting its rows with
+/// `line`; `guess` is the expected bytes per row (capacity only).
+fn section<'a, T: Sync>(
+    rows: &'a [T],
     guess: usize,
-    line: impl Fn(&mut Vec<u8>, &T) + Sync,
-) -> Vec<Vec<u8>> {
-    let block = |chunk: &[T]| {
-        let mut out = Vec::with_capacity(guess * chunk.len() + 16);
-        for r in chunk {
-            line(&mut out, r);
-        }
-        out
-    };
-    if rows.len() <= BLOCK_ROWS {
-        return vec![block(rows)];
+    line: impl Fn(&mut Vec<u8>, &T) + Send + Sync + Copy + 'a,
+) -> Vec<Block<'a>> {
+    rows.chunks(BLOCK_ROWS)
+        .map(|chunk| {
+            Box::new(move || {
+                let mut out = Vec::with_capacity(guess * chunk.len() + 16);
+                for r in chunk {
+                    line(&mut out, r);
+                }
+                out
+            }) as Block<'a>
+        })
+        .collect()
+}
+
+/// The header, then every block formatted (in parallel when there are several), in order.
+fn with_header(header: String, jobs: Vec<Block<'_>>) -> Vec<Vec<u8>> {
+    let mut parts = vec![header.into_bytes()];
+    if jobs.len() <= 1 {
+        parts.extend(jobs.iter().map(|job| job()));
+    } else {
+        parts.par_extend(jobs.par_iter().map(|job| job()));
     }
-    rows.par_chunks(BLOCK_ROWS).map(block).collect()
+    parts
 }
 
 fn push_vertex(out: &mut Vec<u8>, p: &[f64; 3]) {
