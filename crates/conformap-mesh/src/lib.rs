@@ -1,7 +1,8 @@
 //! Validated triangle meshes for conformap: connectivity, boundary loops, topology and
 //! mesh surgery.
 //!
-//! Depends on nothing but `thiserror`; never touches files or matrices.
+//! Depends on nothing but `thiserror` and `rayon` (validation runs its independent passes on
+//! both cores); never touches files or matrices.
 //! [`TriMesh::try_new`] is the single gate every mesh passes: once it returns `Ok`, the
 //! mesh has finite coordinates, in-range indices, no degenerate, duplicate or unreferenced
 //! elements, manifold edges and vertices and a consistent orientation, so downstream crates

@@ -98,15 +98,27 @@ impl TriMesh {
             return Err(MeshError::TooManyVertices { vertices: n });
         }
         check_coordinates(&positions)?;
-        check_faces(&positions, &faces, options)?;
-        let opposite = match_halfedges(n, &faces)?;
+        check_indices(&positions, &faces, options)?;
+        // every index is valid now: the face checks, the half-edge matching and the
+        // components are independent passes, run on both cores; their errors are reported
+        // in the order the sequential checks had (faces, then edges)
+        let ((checked, opposite), components) = rayon::join(
+            || {
+                rayon::join(
+                    || check_faces(&positions, &faces, options),
+                    || match_halfedges(n, &faces),
+                )
+            },
+            || count_components(n, &faces),
+        );
+        checked?;
+        let opposite = opposite?;
         let (is_boundary, boundary_loops) = check_fans_and_loops(n, &faces, &opposite)?;
         let edge_count = opposite
             .iter()
             .enumerate()
             .filter(|&(h, &o)| o == NO_HALFEDGE || (h as u32) < o)
             .count();
-        let components = count_components(n, &faces);
         Ok(Self {
             positions,
             faces,
@@ -418,45 +430,87 @@ fn check_coordinates(positions: &[[f64; 3]]) -> Result<(), MeshError> {
     Ok(())
 }
 
+/// The first face whose indices are out of range or repeat a vertex, as its error; the
+/// faces before it are checked for a degenerate area first, so the error is the one a
+/// face-by-face check (indices, then area) meets first.
+fn check_indices(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    options: &ValidationOptions,
+) -> Result<(), MeshError> {
+    let n = positions.len();
+    let index_error = |face: usize, f: &[u32; 3]| -> Option<MeshError> {
+        if let Some(&index) = f.iter().find(|&&i| i as usize >= n) {
+            return Some(MeshError::IndexOutOfRange {
+                face,
+                index,
+                vertex_count: n,
+            });
+        }
+        if f[0] == f[1] || f[0] == f[2] {
+            return Some(MeshError::RepeatedVertexInFace { face, vertex: f[0] });
+        }
+        (f[1] == f[2]).then_some(MeshError::RepeatedVertexInFace { face, vertex: f[1] })
+    };
+    let Some((bad, error)) = faces
+        .iter()
+        .enumerate()
+        .find_map(|(face, f)| index_error(face, f).map(|e| (face, e)))
+    else {
+        return Ok(());
+    };
+    let threshold = area_threshold(positions, options);
+    for (face, f) in faces[..bad].iter().enumerate() {
+        degenerate(positions, face, f, threshold)?;
+    }
+    Err(error)
+}
+
+/// The smallest face area accepted: [`ValidationOptions::degenerate_area_rel`] times the
+/// squared bounding-box diagonal.
+fn area_threshold(positions: &[[f64; 3]], options: &ValidationOptions) -> f64 {
+    let diag = bbox_diagonal(positions);
+    options.degenerate_area_rel * diag * diag
+}
+
+/// [`MeshError::ZeroAreaFace`] for a face (valid indices) of area at most `threshold`.
+fn degenerate(
+    positions: &[[f64; 3]],
+    face: usize,
+    f: &[u32; 3],
+    threshold: f64,
+) -> Result<(), MeshError> {
+    let area = triangle_area(
+        positions[f[0] as usize],
+        positions[f[1] as usize],
+        positions[f[2] as usize],
+    );
+    // a NaN area (overflowing coordinates) is degenerate too
+    if area.is_nan() || area <= threshold {
+        return Err(MeshError::ZeroAreaFace {
+            face,
+            area,
+            threshold,
+        });
+    }
+    Ok(())
+}
+
+/// Degenerate faces, unreferenced vertices and duplicate faces of faces whose indices
+/// [`check_indices`] accepted.
 fn check_faces(
     positions: &[[f64; 3]],
     faces: &[[u32; 3]],
     options: &ValidationOptions,
 ) -> Result<(), MeshError> {
     let n = positions.len();
-    let diag = bbox_diagonal(positions);
-    let threshold = options.degenerate_area_rel * diag * diag;
+    let threshold = area_threshold(positions, options);
     let mut referenced = vec![false; n];
     for (face, f) in faces.iter().enumerate() {
         for &index in f {
-            if index as usize >= n {
-                return Err(MeshError::IndexOutOfRange {
-                    face,
-                    index,
-                    vertex_count: n,
-                });
-            }
             referenced[index as usize] = true;
         }
-        if f[0] == f[1] || f[0] == f[2] {
-            return Err(MeshError::RepeatedVertexInFace { face, vertex: f[0] });
-        }
-        if f[1] == f[2] {
-            return Err(MeshError::RepeatedVertexInFace { face, vertex: f[1] });
-        }
-        let area = triangle_area(
-            positions[f[0] as usize],
-            positions[f[1] as usize],
-            positions[f[2] as usize],
-        );
-        // a NaN area (overflowing coordinates) is degenerate too
-        if area.is_nan() || area <= threshold {
-            return Err(MeshError::ZeroAreaFace {
-                face,
-                area,
-                threshold,
-            });
-        }
+        degenerate(positions, face, f, threshold)?;
     }
     if let Some(vertex) = referenced.iter().position(|r| !r) {
         let count = referenced.iter().filter(|r| !**r).count();

@@ -239,3 +239,48 @@ fn two_components_and_annulus() {
     let wc = m.well_conditioned();
     assert!(!wc.boundary_connected);
 }
+
+/// The first defect face by face wins, whichever check finds it: a degenerate face before
+/// a bad index, a bad index before a degenerate face, a degenerate face before a duplicate
+/// and before a non-manifold edge (the checks run in parallel once the indices are valid).
+#[test]
+fn the_first_defect_face_by_face_is_reported() {
+    let (mut p, f) = grid(3);
+    // vertex 10 onto the line through 5 and 6: face 8 = [5, 6, 10] loses its area
+    assert_eq!(f[8], [5, 6, 10]);
+    p[10] = [2.5, 1.0, 0.0];
+    let first = 8;
+    assert!(matches!(
+        TriMesh::try_new(p.clone(), f.clone()).unwrap_err(),
+        MeshError::ZeroAreaFace { face: 8, .. }
+    ));
+    // a bad index after the degenerate face: the degenerate face is reported
+    let mut late = f.clone();
+    late[first + 1][0] = 99;
+    assert!(matches!(
+        TriMesh::try_new(p.clone(), late).unwrap_err(),
+        MeshError::ZeroAreaFace { face, .. } if face == first
+    ));
+    // a bad index before it: the index is reported
+    let mut early = f.clone();
+    early[first - 1][0] = 99;
+    assert!(matches!(
+        TriMesh::try_new(p.clone(), early).unwrap_err(),
+        MeshError::IndexOutOfRange { face, index: 99, .. } if face == first - 1
+    ));
+    // a duplicate face and a non-manifold edge rank after the degenerate face
+    let mut dup = f.clone();
+    dup.push(f[0]);
+    assert!(matches!(
+        TriMesh::try_new(p.clone(), dup).unwrap_err(),
+        MeshError::ZeroAreaFace { face, .. } if face == first
+    ));
+    // with the geometry repaired the duplicate is found
+    let (good, _) = grid(3);
+    let mut dup = f.clone();
+    dup.push(f[0]);
+    assert!(matches!(
+        TriMesh::try_new(good, dup).unwrap_err(),
+        MeshError::DuplicateFace { .. }
+    ));
+}
