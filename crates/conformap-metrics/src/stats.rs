@@ -29,6 +29,25 @@ impl Running {
         }
     }
 
+    /// Adds the values summarized by `other` (Chan et al.'s pairwise update), as if they
+    /// had been pushed after this summary's.
+    pub(crate) fn merge(&mut self, other: &Self) {
+        if other.n == 0 {
+            return;
+        }
+        if self.n == 0 {
+            *self = *other;
+            return;
+        }
+        let n = self.n + other.n;
+        let delta = other.mean - self.mean;
+        let (a, b) = (self.n as f64, other.n as f64);
+        self.mean += delta * b / n as f64;
+        self.m2 += other.m2 + delta * delta * a * b / n as f64;
+        self.max = self.max.max(other.max);
+        self.n = n;
+    }
+
     /// Mean (0 for no values).
     pub(crate) fn mean(&self) -> f64 {
         self.mean
@@ -73,6 +92,24 @@ pub(crate) fn angle_bin(d: f64) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Blocks merged in order summarize what one stream does (empty blocks included).
+    #[test]
+    fn merged_blocks_match_one_stream() {
+        let xs: Vec<f64> = (0..1000).map(|i| ((i * 7919) % 1013) as f64 * 0.37 - 50.0).collect();
+        let mut one = Running::default();
+        xs.iter().for_each(|&x| one.push(x));
+        let mut merged = Running::default();
+        for block in [&xs[..0], &xs[..1], &xs[1..400], &xs[400..400], &xs[400..]] {
+            let mut r = Running::default();
+            block.iter().for_each(|&x| r.push(x));
+            merged.merge(&r);
+        }
+        assert_eq!(merged.n, one.n);
+        assert!((merged.mean() - one.mean()).abs() < 1e-12 * one.mean().abs().max(1.0));
+        assert!((merged.sd() - one.sd()).abs() < 1e-12 * one.sd());
+        assert_eq!(merged.max(), one.max());
+    }
 
     #[test]
     fn running_matches_two_pass() {

@@ -136,7 +136,8 @@ pub fn find_zeros(mesh: &TriMesh, corner_uv: &[Complex64], stretch: &[f64]) -> Z
     }
     // clusters: components of the special vertices along edges
     let mut label = vec![usize::MAX; n];
-    let adj = mesh.vertex_adjacency();
+    // the adjacency only when there is a cluster to grow (a genus-1 form has none)
+    let adj = special.contains(&true).then(|| mesh.vertex_adjacency());
     let mut clusters: Vec<Vec<usize>> = Vec::new();
     for s in 0..n {
         if !special[s] || label[s] != usize::MAX {
@@ -149,7 +150,7 @@ pub fn find_zeros(mesh: &TriMesh, corner_uv: &[Complex64], stretch: &[f64]) -> Z
         while i < members.len() {
             let v = members[i];
             i += 1;
-            for &w in adj.neighbors_of(v) {
+            for &w in adj.as_ref().map_or(&[][..], |a| a.neighbors_of(v)) {
                 let w = w as usize;
                 if special[w] && label[w] == usize::MAX {
                     label[w] = id;
