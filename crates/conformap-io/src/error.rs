@@ -251,6 +251,9 @@ pub enum ObjProblem {
         /// How many such elements there are (for negative indices: defined so far).
         count: usize,
     },
+    /// The reader's first pass counted fewer elements than its parse met on this line: a
+    /// reader bug, never a property of the file (reported instead of writing out of bounds).
+    Miscounted,
 }
 
 impl ObjProblem {
@@ -265,6 +268,9 @@ impl ObjProblem {
             Self::IndexOutOfRange { .. } => {
                 "the face refers to an element the file does not define: the file is \
                  truncated or its indices are off; re-export it"
+            }
+            Self::Miscounted => {
+                "this is a conformap bug, not your file's: please report it with the file"
             }
             Self::UnknownStatement { .. }
             | Self::WrongValueCount { .. }
@@ -298,6 +304,7 @@ impl fmt::Display for ObjProblem {
                 f,
                 "face corner `{token}` is not v, v/vt, v//vn or v/vt/vn with integer indices"
             ),
+            Self::Miscounted => write!(f, "the reader's element count disagrees with its parse"),
             Self::IndexZero { what } => {
                 write!(f, "{what} index 0 (OBJ indices start at 1)")
             }
@@ -534,6 +541,7 @@ mod tests {
                 index: 9,
                 count: 3,
             }),
+            line(ObjProblem::Miscounted),
             IoError::InvalidMesh {
                 path: path(),
                 origin: None,

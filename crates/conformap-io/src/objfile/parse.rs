@@ -36,13 +36,15 @@ const IGNORED_NOTED: &[&[u8]] = &[
     b"hole", b"scrv", b"sp", b"end", b"con", b"ctech", b"stech",
 ];
 
-/// Lines and `v`/`vt`/`vn` statements of a chunk (or, summed, of the text before it).
+/// Lines, `v`/`vt`/`vn` statements and the triangles of the `f` statements (corners − 2
+/// each) of a chunk, or, summed, of the text before it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub(crate) struct Counts {
     pub(crate) lines: usize,
     pub(crate) v: usize,
     pub(crate) vt: usize,
     pub(crate) vn: usize,
+    pub(crate) tri: usize,
 }
 
 impl Counts {
@@ -52,11 +54,12 @@ impl Counts {
             v: self.v + o.v,
             vt: self.vt + o.vt,
             vn: self.vn + o.vn,
+            tri: self.tri + o.tri,
         }
     }
 }
 
-/// What a chunk yields; line numbers are the file's (1-based).
+/// What a text yields; line numbers are the file's (1-based).
 #[derive(Debug, Default)]
 pub(crate) struct Parsed {
     pub(crate) positions: Vec<[f64; 3]>,
@@ -64,9 +67,137 @@ pub(crate) struct Parsed {
     pub(crate) texcoords: Vec<[f64; 2]>,
     /// Triangles, 0-based global vertex indices.
     pub(crate) faces: Vec<[u32; 3]>,
-    /// 0-based global `vt` index of each triangle corner, [`NO_UV`] if none.
+    /// 0-based global `vt` index of each triangle corner, [`NO_UV`] if none; empty when the
+    /// text has no `vt` at all.
     pub(crate) face_uv: Vec<[u32; 3]>,
     pub(crate) face_lines: Vec<usize>,
+    /// Point, line and free-form statements ignored.
+    pub(crate) noted: usize,
+    /// The first offending line; parsing stops there.
+    pub(crate) error: Option<(usize, ObjProblem)>,
+}
+
+impl Parsed {
+    /// Room for exactly what `total` counts (the parse fills it in place, no growth and no
+    /// concatenation of per-chunk pieces).
+    pub(crate) fn with_counts(total: Counts) -> Self {
+        Self {
+            positions: vec![[0.0; 3]; total.v],
+            vertex_lines: vec![0; total.v],
+            texcoords: vec![[0.0; 2]; total.vt],
+            faces: vec![[0; 3]; total.tri],
+            face_uv: if total.vt > 0 {
+                vec![[NO_UV; 3]; total.tri]
+            } else {
+                Vec::new()
+            },
+            face_lines: vec![0; total.tri],
+            noted: 0,
+            error: None,
+        }
+    }
+
+    /// Disjoint writers, one per chunk of `own` counts, in order.
+    pub(crate) fn sinks(&mut self, own: &[Counts]) -> Vec<Sink<'_>> {
+        let mut out = Vec::with_capacity(own.len());
+        let has_uv = !self.face_uv.is_empty();
+        let (mut pos, mut vl, mut tc) = (
+            &mut self.positions[..],
+            &mut self.vertex_lines[..],
+            &mut self.texcoords[..],
+        );
+        let (mut fc, mut fu, mut fl) = (
+            &mut self.faces[..],
+            &mut self.face_uv[..],
+            &mut self.face_lines[..],
+        );
+        for c in own {
+            let (a, rest) = std::mem::take(&mut pos).split_at_mut(c.v);
+            pos = rest;
+            let (b, rest) = std::mem::take(&mut vl).split_at_mut(c.v);
+            vl = rest;
+            let (t, rest) = std::mem::take(&mut tc).split_at_mut(c.vt);
+            tc = rest;
+            let (f, rest) = std::mem::take(&mut fc).split_at_mut(c.tri);
+            fc = rest;
+            let (u, rest) = std::mem::take(&mut fu).split_at_mut(if has_uv { c.tri } else { 0 });
+            fu = rest;
+            let (l, rest) = std::mem::take(&mut fl).split_at_mut(c.tri);
+            fl = rest;
+            out.push(Sink {
+                positions: a,
+                vertex_lines: b,
+                texcoords: t,
+                faces: f,
+                face_uv: u,
+                face_lines: l,
+                nv: 0,
+                nvt: 0,
+                nf: 0,
+            });
+        }
+        out
+    }
+}
+
+/// Where one chunk's elements go: its slices of the whole text's arrays.
+pub(crate) struct Sink<'a> {
+    positions: &'a mut [[f64; 3]],
+    vertex_lines: &'a mut [usize],
+    texcoords: &'a mut [[f64; 2]],
+    faces: &'a mut [[u32; 3]],
+    face_uv: &'a mut [[u32; 3]],
+    face_lines: &'a mut [usize],
+    nv: usize,
+    nvt: usize,
+    nf: usize,
+}
+
+impl Sink<'_> {
+    fn vertex(&mut self, p: [f64; 3], line: usize) -> Result<(), ObjProblem> {
+        let (Some(slot), Some(l)) = (
+            self.positions.get_mut(self.nv),
+            self.vertex_lines.get_mut(self.nv),
+        ) else {
+            return Err(ObjProblem::Miscounted);
+        };
+        (*slot, *l) = (p, line);
+        self.nv += 1;
+        Ok(())
+    }
+
+    fn texcoord(&mut self, t: [f64; 2]) -> Result<(), ObjProblem> {
+        let slot = self
+            .texcoords
+            .get_mut(self.nvt)
+            .ok_or(ObjProblem::Miscounted)?;
+        *slot = t;
+        self.nvt += 1;
+        Ok(())
+    }
+
+    fn triangle(&mut self, v: [u32; 3], t: [u32; 3], line: usize) -> Result<(), ObjProblem> {
+        let (Some(f), Some(l)) = (
+            self.faces.get_mut(self.nf),
+            self.face_lines.get_mut(self.nf),
+        ) else {
+            return Err(ObjProblem::Miscounted);
+        };
+        (*f, *l) = (v, line);
+        match self.face_uv.get_mut(self.nf) {
+            Some(u) => *u = t,
+            // no `vt` in the text: every corner is NO_UV (an index would have failed)
+            None if t == [NO_UV; 3] => {}
+            None => return Err(ObjProblem::Miscounted),
+        }
+        self.nf += 1;
+        Ok(())
+    }
+}
+
+/// A chunk's outcome beyond the elements it wrote.
+#[derive(Debug, Default)]
+pub(crate) struct ChunkOutcome {
     /// Point, line and free-form statements ignored.
     pub(crate) noted: usize,
     /// The chunk's first offending line; parsing stops there.
@@ -99,6 +230,7 @@ pub(crate) fn count(chunk: &[u8]) -> Counts {
             Some((b"v", _)) => c.v += 1,
             Some((b"vt", _)) => c.vt += 1,
             Some((b"vn", _)) => c.vn += 1,
+            Some((b"f", rest)) => c.tri += words(rest).saturating_sub(2),
             _ => {}
         }
     }
@@ -106,35 +238,65 @@ pub(crate) fn count(chunk: &[u8]) -> Counts {
     c
 }
 
-/// Parses a chunk. `before`: lines and elements before it; `own`: in it ([`count`]);
-/// `total`: in the whole file.
-pub(crate) fn parse_chunk(chunk: &[u8], before: Counts, own: Counts, total: Counts) -> Parsed {
-    let mut p = Parsed::default();
-    // capacity from the chunk's own counts (the first pass), faces guessed as one
-    // triangle per remaining line: no reallocation on the usual files
-    p.positions.reserve(own.v);
-    p.vertex_lines.reserve(own.v);
-    p.texcoords.reserve(own.vt);
-    let rest = own.lines.saturating_sub(own.v + own.vt + own.vn);
-    p.faces.reserve(rest);
-    p.face_uv.reserve(rest);
-    p.face_lines.reserve(rest);
+/// Blank-separated words of `s` (the corners of an `f` statement).
+fn words(s: &[u8]) -> usize {
+    let mut n = 0;
+    let mut in_word = false;
+    for &b in s {
+        let word = !is_blank(b);
+        n += usize::from(word && !in_word);
+        in_word = word;
+    }
+    n
+}
+
+/// Parses a chunk into `sink` (room for exactly its elements: [`Parsed::sinks`] with the
+/// chunk's [`count`]). `before`: lines and elements before it; `total`: in the whole file.
+pub(crate) fn parse_into(
+    chunk: &[u8],
+    before: Counts,
+    total: Counts,
+    sink: &mut Sink<'_>,
+) -> ChunkOutcome {
+    let mut out = ChunkOutcome::default();
     let mut seen = before;
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for line in Lines::new(chunk) {
         let lineno = before.lines + line.index + 1;
-        if let Err(problem) = statement(&line.text, lineno, &mut seen, total, &mut p, &mut corners)
-        {
+        if let Err(problem) = statement(
+            &line.text,
+            lineno,
+            &mut seen,
+            total,
+            sink,
+            &mut out.noted,
+            &mut corners,
+        ) {
             let problem = if std::str::from_utf8(&line.text).is_err() {
                 ObjProblem::NotUtf8
             } else {
                 problem
             };
-            p.error = Some((lineno, problem));
+            out.error = Some((lineno, problem));
             break;
         }
     }
-    p
+    out
+}
+
+/// Parses a whole text in one piece (counted first): the reference the tests compare the
+/// chunked reader with.
+#[cfg(test)]
+pub(crate) fn parse_text(text: &[u8]) -> Parsed {
+    let total = count(text);
+    let mut whole = Parsed::with_counts(total);
+    let outcome = {
+        let mut sinks = whole.sinks(&[total]);
+        parse_into(text, Counts::default(), total, &mut sinks[0])
+    };
+    whole.noted = outcome.noted;
+    whole.error = outcome.error;
+    whole
 }
 
 fn statement(
@@ -142,7 +304,8 @@ fn statement(
     lineno: usize,
     seen: &mut Counts,
     total: Counts,
-    p: &mut Parsed,
+    p: &mut Sink<'_>,
+    noted: &mut usize,
     corners: &mut Vec<(u32, u32)>,
 ) -> Result<(), ObjProblem> {
     let Some((keyword, mut rest)) = split_keyword(line) else {
@@ -151,8 +314,7 @@ fn statement(
     match keyword {
         b"v" => {
             if let Some(pos) = fast_floats::<3>(rest) {
-                p.positions.push(pos);
-                p.vertex_lines.push(lineno);
+                p.vertex(pos, lineno)?;
                 seen.v += 1;
                 return Ok(());
             }
@@ -166,19 +328,18 @@ fn statement(
                 }
                 pos = pos.map(|c| c / x[3]);
             }
-            p.positions.push(pos);
-            p.vertex_lines.push(lineno);
+            p.vertex(pos, lineno)?;
             seen.v += 1;
         }
         b"vt" => {
             if let Some(t) = fast_floats::<2>(rest) {
-                p.texcoords.push(t);
+                p.texcoord(t)?;
                 seen.vt += 1;
                 return Ok(());
             }
             let mut x = [0.0; 3];
             numbers("vt", &mut rest, &mut x, &[2, 3])?;
-            p.texcoords.push([x[0], x[1]]);
+            p.texcoord([x[0], x[1]])?;
             seen.vt += 1;
         }
         b"vn" => {
@@ -205,13 +366,11 @@ fn statement(
             }
             for w in 1..corners.len() - 1 {
                 let (a, b, c) = (corners[0], corners[w], corners[w + 1]);
-                p.faces.push([a.0, b.0, c.0]);
-                p.face_uv.push([a.1, b.1, c.1]);
-                p.face_lines.push(lineno);
+                p.triangle([a.0, b.0, c.0], [a.1, b.1, c.1], lineno)?;
             }
         }
         k if k.first() == Some(&b'#') || IGNORED.contains(&k) => {}
-        k if IGNORED_NOTED.contains(&k) => p.noted += 1,
+        k if IGNORED_NOTED.contains(&k) => *noted += 1,
         k => {
             let keyword = std::str::from_utf8(k).map_err(|_| ObjProblem::NotUtf8)?;
             return Err(ObjProblem::UnknownStatement {
@@ -452,8 +611,7 @@ mod tests {
     use super::*;
 
     fn one(text: &str) -> Parsed {
-        let total = count(text.as_bytes());
-        parse_chunk(text.as_bytes(), Counts::default(), total, total)
+        parse_text(text.as_bytes())
     }
 
     #[test]
@@ -505,7 +663,8 @@ mod tests {
     #[test]
     fn numbers_and_homogeneous_w() {
         let s = one("v 1 2 3 2\nv 1 2 zero\n");
-        assert_eq!(s.positions, vec![[0.5, 1.0, 1.5]]);
+        // the first line parsed (the arrays are sized by the count; the error stops there)
+        assert_eq!(s.positions[0], [0.5, 1.0, 1.5]);
         assert!(matches!(s.error, Some((2, ObjProblem::BadNumber { .. }))));
         let s = one("v 1 2 3 0\n");
         assert!(matches!(s.error, Some((1, ObjProblem::BadNumber { .. }))));
@@ -590,16 +749,16 @@ mod tests {
             }
         }
         let seen = Counts {
-            lines: 0,
             v: 5,
             vt: 4,
             vn: 3,
+            ..Counts::default()
         };
         let total = Counts {
-            lines: 0,
             v: 9,
             vt: 9,
             vn: 9,
+            ..Counts::default()
         };
         let corner_tokens = [
             "1",
@@ -644,11 +803,10 @@ mod tests {
     #[test]
     fn non_utf8_only_matters_in_statements() {
         let mut bytes = b"# caf\xe9\no caf\xe9\nv 0 0 0\n".to_vec();
-        let s = parse_chunk(&bytes, Counts::default(), count(&bytes), count(&bytes));
+        let s = parse_text(&bytes);
         assert!(s.error.is_none());
         bytes.extend_from_slice(b"v 1 \xe9 0\n");
-        let total = count(&bytes);
-        let s = parse_chunk(&bytes, Counts::default(), total, total);
+        let s = parse_text(&bytes);
         assert!(matches!(s.error, Some((4, ObjProblem::NotUtf8))));
     }
 }

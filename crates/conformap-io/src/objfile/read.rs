@@ -1,5 +1,6 @@
-//! OBJ reading: the text split into chunks at line ends, each chunk counted and then
-//! parsed in parallel (see [`super::parse`]), the pieces concatenated in file order.
+//! OBJ reading: the text split into chunks at line ends, each chunk counted, then parsed in
+//! parallel (see [`super::parse`]) straight into its own slices of the file's arrays, sized
+//! exactly by the counts (nothing grows, nothing is concatenated).
 
 use std::path::Path;
 
@@ -7,7 +8,7 @@ use conformap_mesh::MeshError;
 use rayon::prelude::*;
 
 use super::lines::split_chunks;
-use super::parse::{count, parse_chunk, Counts, Parsed, NO_UV};
+use super::parse::{count, parse_into, ChunkOutcome, Counts, Parsed, NO_UV};
 use crate::corner_uv::CornerUv;
 use crate::error::{IoError, Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
@@ -42,27 +43,30 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
         before.push(acc);
         acc = acc.add(c);
     }
-    let parsed: Vec<Parsed> = if chunks.len() > 1 {
-        chunks
-            .par_iter()
-            .zip(before.par_iter().zip(counts.par_iter()))
-            .map(|(c, (&b, &own))| parse_chunk(c, b, own, total))
-            .collect()
-    } else {
-        chunks
-            .iter()
-            .zip(before.iter().zip(&counts))
-            .map(|(c, (&b, &own))| parse_chunk(c, b, own, total))
-            .collect()
+    let mut whole = Parsed::with_counts(total);
+    let outcomes: Vec<ChunkOutcome> = {
+        let sinks = whole.sinks(&counts);
+        let jobs = chunks.into_iter().zip(before).zip(sinks);
+        if counts.len() > 1 {
+            jobs.collect::<Vec<_>>()
+                .into_par_iter()
+                .map(|((c, b), mut sink)| parse_into(c, b, total, &mut sink))
+                .collect()
+        } else {
+            jobs.map(|((c, b), mut sink)| parse_into(c, b, total, &mut sink))
+                .collect()
+        }
     };
     // each chunk stops at its first bad line, so the first chunk with one has the file's
-    if let Some((line, problem)) = parsed.iter().find_map(|p| p.error.clone()) {
+    whole.error = outcomes.iter().find_map(|o| o.error.clone());
+    if let Some((line, problem)) = whole.error.take() {
         return Err(IoError::ObjSyntax {
             path: path.to_path_buf(),
             line,
             problem,
         });
     }
+    whole.noted = outcomes.iter().map(|o| o.noted).sum();
     if total.v == 0 {
         return Err(IoError::InvalidMesh {
             path: path.to_path_buf(),
@@ -70,7 +74,6 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
             source: MeshError::NoVertices,
         });
     }
-    let whole = concat(parsed);
     let uv = per_vertex_uv(&whole);
     let corner_uv = corner_uv(&whole);
     let mut source = SourceInfo::new(path.to_path_buf(), Format::Obj);
@@ -84,30 +87,6 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
     source.vertex_lines = Some(whole.vertex_lines);
     source.face_lines = Some(whole.face_lines);
     Ok(RawMesh::new(whole.positions, whole.faces, uv, source, None).with_corner_uv(corner_uv))
-}
-
-/// The chunks' pieces joined in file order.
-fn concat(mut parsed: Vec<Parsed>) -> Parsed {
-    if parsed.len() == 1 {
-        return parsed.pop().unwrap_or_default();
-    }
-    fn join<T: Copy>(parts: &[Parsed], pick: impl Fn(&Parsed) -> &Vec<T>) -> Vec<T> {
-        let mut out = Vec::with_capacity(parts.iter().map(|p| pick(p).len()).sum());
-        for p in parts {
-            out.extend_from_slice(pick(p));
-        }
-        out
-    }
-    Parsed {
-        positions: join(&parsed, |p| &p.positions),
-        vertex_lines: join(&parsed, |p| &p.vertex_lines),
-        texcoords: join(&parsed, |p| &p.texcoords),
-        faces: join(&parsed, |p| &p.faces),
-        face_uv: join(&parsed, |p| &p.face_uv),
-        face_lines: join(&parsed, |p| &p.face_lines),
-        noted: parsed.iter().map(|p| p.noted).sum(),
-        error: None,
-    }
 }
 
 /// The texture coordinate of every corner, when every corner has one.
@@ -131,6 +110,7 @@ type VertexUv = Vec<Option<[f64; 2]>>;
 /// the corners of a vertex one value (the same value under two `vt` indices is fine).
 fn per_vertex_uv(s: &Parsed) -> Result<VertexUv, UvProblem> {
     let corners = s.face_uv.iter().flatten();
+    // no `vt` in the file leaves `face_uv` empty
     if corners.clone().all(|&t| t == NO_UV) {
         return Err(UvProblem::Absent);
     }
@@ -207,8 +187,7 @@ mod tests {
         }
         assert!(text.len() > PARALLEL_MIN_BYTES);
         let bytes = text.as_bytes();
-        let whole = count(bytes);
-        let one = parse_chunk(bytes, Counts::default(), whole, whole);
+        let one = super::super::parse::parse_text(bytes);
         let raw = read_obj_raw(bytes, Path::new("t.obj")).unwrap();
         assert_eq!(raw.positions, one.positions);
         assert_eq!(raw.faces, one.faces);
