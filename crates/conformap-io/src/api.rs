@@ -84,7 +84,8 @@ pub fn write_mesh_with_uv(
     check_finite(uv.iter().map(|t| t.as_slice())).map_err(bad)?;
     match format {
         Format::Obj => {
-            let parts = encode_obj_with_uv(mesh.positions(), uv, mesh.faces());
+            let text = source.and_then(|s| s.vertex_text.as_deref());
+            let parts = encode_obj_with_uv(mesh.positions(), uv, mesh.faces(), text);
             write_parts_atomically(path, &parts)
         }
         Format::Gltf | Format::Glb => {

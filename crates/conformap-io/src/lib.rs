@@ -62,7 +62,7 @@ pub use coincident::{coincident_vertices, weld_coincident, Welded};
 pub use corner_uv::{write_mesh_with_corner_uv, CornerUv};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
-pub use loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
+pub use loaded::{Format, LoadedMesh, SourceInfo, VertexText, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
 
 /// Peak memory of reading a mesh file, per byte of the file (the bytes, the text the OBJ

@@ -127,6 +127,61 @@ pub struct SourceInfo {
     /// Things that were ignored or adjusted while reading (non-triangle glTF primitives,
     /// OBJ lines or points, ...), for the caller to show. Empty when nothing was.
     pub notes: Vec<String>,
+    /// OBJ read from a file: every vertex's coordinates as the file wrote them, which the
+    /// OBJ writer copies instead of formatting the same numbers again. `None` for glTF and
+    /// for bytes read from memory.
+    pub vertex_text: Option<std::sync::Arc<VertexText>>,
+}
+
+/// The text of each vertex's `x y z` in an OBJ file, kept from reading for writing: copying
+/// the numbers as written gives back exactly the bits they were parsed to (the same parser
+/// reads the output), at the cost of keeping the file's bytes (its size) until then.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct VertexText {
+    bytes: Vec<u8>,
+    /// `(start, len)` in `bytes` per vertex; `start == usize::MAX` where the numbers cannot
+    /// be copied (a homogeneous `w`, colours after the position, a continued line).
+    spans: Vec<(usize, usize)>,
+}
+
+impl VertexText {
+    /// The file's bytes and the span of each vertex's numbers in them.
+    pub(crate) fn new(bytes: Vec<u8>, spans: Vec<(usize, usize)>) -> Self {
+        Self { bytes, spans }
+    }
+
+    /// Vertices described.
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// Whether no vertex is described.
+    pub fn is_empty(&self) -> bool {
+        self.spans.is_empty()
+    }
+
+    /// Vertex `v`'s `x y z` as written, `None` where it cannot be copied.
+    pub fn vertex(&self, v: usize) -> Option<&[u8]> {
+        let &(start, len) = self.spans.get(v)?;
+        self.bytes.get(start..start.checked_add(len)?)
+    }
+
+    /// Whether the text of vertex `v` (where there is one) parses to exactly `p`: the
+    /// writer's check that the mesh it writes is the one read.
+    pub fn matches(&self, v: usize, p: [f64; 3]) -> bool {
+        let Some(text) = self.vertex(v) else {
+            return true;
+        };
+        let mut words = text
+            .split(|b| b.is_ascii_whitespace())
+            .filter(|w| !w.is_empty());
+        p.iter().all(|&x| {
+            words
+                .next()
+                .and_then(|w| fast_float2::parse::<f64, _>(w).ok())
+                .is_some_and(|y| y.to_bits() == x.to_bits())
+        }) && words.next().is_none()
+    }
 }
 
 impl SourceInfo {
@@ -142,6 +197,7 @@ impl SourceInfo {
             weld_map: None,
             file_faces: None,
             notes: Vec::new(),
+            vertex_text: None,
         }
     }
 }

@@ -9,7 +9,7 @@ use conformap_mesh::{MeshError, TriMesh};
 use crate::corner_uv::CornerUv;
 use crate::error::{mesh_error_element, Element, IoError, Origin, UvProblem};
 use crate::gltffile::{face_origin, read_gltf_raw, vertex_origin, PrimRange};
-use crate::loaded::{Format, LoadedMesh, SourceInfo};
+use crate::loaded::{Format, LoadedMesh, SourceInfo, VertexText};
 use crate::objfile::read_obj_raw;
 
 /// The name errors use for data that did not come from a file.
@@ -202,7 +202,12 @@ pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
         source,
     })?;
     match format {
-        Format::Obj => read_obj_raw(&bytes, path),
+        Format::Obj => {
+            let (mut raw, spans) = read_obj_raw(&bytes, path)?;
+            // the bytes move into the source (no copy) for the writer to reuse
+            raw.source.vertex_text = Some(std::sync::Arc::new(VertexText::new(bytes, spans)));
+            Ok(raw)
+        }
         Format::Gltf | Format::Glb => {
             let base = path.parent().unwrap_or(Path::new(""));
             read_gltf_raw(&bytes, path, Some(base), format)
@@ -218,7 +223,7 @@ pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
 pub fn read_raw_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<RawMesh, IoError> {
     let path = Path::new(MEMORY);
     match format {
-        Format::Obj => read_obj_raw(bytes, path),
+        Format::Obj => Ok(read_obj_raw(bytes, path)?.0),
         Format::Gltf | Format::Glb => read_gltf_raw(bytes, path, None, format),
     }
 }

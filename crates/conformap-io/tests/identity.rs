@@ -32,21 +32,62 @@ fn assert_identity(mesh_file: &Path, out: &Path) -> usize {
             .map(|p| [p[0], p[1]])
             .collect(),
     };
-    write_mesh_with_uv(out, &loaded.mesh, &uv, None).unwrap();
-    let again = read_mesh(out).unwrap();
-    let name = mesh_file.display();
-    assert_eq!(
-        bits3(again.mesh.positions()),
-        bits3(loaded.mesh.positions()),
-        "{name}: positions"
-    );
-    assert_eq!(again.mesh.faces(), loaded.mesh.faces(), "{name}: faces");
-    assert_eq!(
-        bits2(again.per_vertex_uv().unwrap()),
-        bits2(&uv),
-        "{name}: texture coordinates"
-    );
+    // formatted (no source), then with the file's own numbers copied (its source)
+    for source in [None, Some(&loaded.source)] {
+        write_mesh_with_uv(out, &loaded.mesh, &uv, source).unwrap();
+        let again = read_mesh(out).unwrap();
+        let name = format!("{} (source: {})", mesh_file.display(), source.is_some());
+        assert_eq!(
+            bits3(again.mesh.positions()),
+            bits3(loaded.mesh.positions()),
+            "{name}: positions"
+        );
+        assert_eq!(again.mesh.faces(), loaded.mesh.faces(), "{name}: faces");
+        assert_eq!(
+            bits2(again.per_vertex_uv().unwrap()),
+            bits2(&uv),
+            "{name}: texture coordinates"
+        );
+    }
     loaded.mesh.num_vertices()
+}
+
+/// With the file's source, `v` lines carry the numbers exactly as the file wrote them; a
+/// vertex that no longer matches its text (a mesh changed after reading) is formatted, and
+/// the file still reads back to the mesh written.
+#[test]
+fn written_positions_copy_the_file_text_only_where_it_still_holds() {
+    let d = out_dir("identity_text");
+    let input = d.join("in.obj");
+    let text = "v 1.000000 0.0 0e0\nv 0.1000 1e0 -0.0\nv   +2.50   2.5E-1\t3\nv 1 1 1 1\nf 1 2 3\nf 2 4 3\n";
+    std::fs::write(&input, text).unwrap();
+    let loaded = read_mesh(&input).unwrap();
+    let uv = vec![[0.0, 0.0]; 4];
+    let out = d.join("out.obj");
+    write_mesh_with_uv(&out, &loaded.mesh, &uv, Some(&loaded.source)).unwrap();
+    let written = std::fs::read_to_string(&out).unwrap();
+    let v_lines: Vec<&str> = written.lines().filter(|l| l.starts_with("v ")).collect();
+    // copied as written, from the first number to the last; the homogeneous line formatted
+    assert_eq!(
+        v_lines,
+        [
+            "v 1.000000 0.0 0e0",
+            "v 0.1000 1e0 -0.0",
+            "v +2.50   2.5E-1\t3",
+            "v 1.0 1.0 1.0"
+        ]
+    );
+    // a moved vertex: its text no longer parses to it, so it is formatted
+    let mut moved = loaded.mesh.positions().to_vec();
+    moved[1][0] = 0.25;
+    let mesh =
+        conformap_mesh::TriMesh::try_new(moved.clone(), loaded.mesh.faces().to_vec()).unwrap();
+    write_mesh_with_uv(&out, &mesh, &uv, Some(&loaded.source)).unwrap();
+    let again = read_mesh(&out).unwrap();
+    assert_eq!(bits3(again.mesh.positions()), bits3(&moved));
+    let written = std::fs::read_to_string(&out).unwrap();
+    assert!(written.contains("v 0.25 1.0 -0.0\n"), "{written}");
+    assert!(written.contains("v 1.000000 0.0 0e0\n"), "{written}");
 }
 
 #[test]

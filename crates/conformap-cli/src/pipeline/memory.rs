@@ -16,6 +16,9 @@ pub struct MemoryCheck {
     pub read_estimate: u64,
     /// Peak of the whole run (at least `read_estimate`).
     pub estimate: u64,
+    /// The input file's size: an OBJ's text stays in memory until the write, which copies
+    /// the vertices' numbers from it (`conformap_io::VertexText`).
+    pub file_bytes: u64,
     /// The limit, and where it came from; `None` when unknown (no check).
     pub limit: Option<(u64, &'static str)>,
 }
@@ -33,6 +36,10 @@ impl MemoryCheck {
         let check = Self {
             read_estimate,
             estimate: read_estimate,
+            file_bytes: match conformap_io::Format::from_path(path) {
+                Ok(conformap_io::Format::Obj) => size,
+                _ => 0,
+            },
             limit,
         };
         check.refuse_above(
@@ -43,9 +50,12 @@ impl MemoryCheck {
     }
 
     /// Refuses the run, before anything is assembled or factored, if `solve_estimate`
-    /// (bytes, from the command's model) is above the limit; `what` names the work.
+    /// (bytes, from the command's model) plus the file kept for the write is above the
+    /// limit; `what` names the work.
     pub fn before_solving(mut self, solve_estimate: u64, what: &str) -> Result<Self, Failure> {
-        self.estimate = solve_estimate.max(self.read_estimate);
+        self.estimate = solve_estimate
+            .saturating_add(self.file_bytes)
+            .max(self.read_estimate);
         self.refuse_above(self.estimate, what)?;
         Ok(self)
     }

@@ -12,10 +12,12 @@ use std::borrow::Cow;
 
 use memchr::{memchr2, memrchr2};
 
-/// One logical line: its physical line number (0-based within the chunk) and its text
-/// (continuations joined by a space, line ends removed).
+/// One logical line: its physical line number (0-based within the chunk), the byte offset
+/// of its start within the chunk, and its text (continuations joined by a space, line ends
+/// removed; borrowed from the chunk at that offset unless joined).
 pub(crate) struct Line<'a> {
     pub(crate) index: usize,
+    pub(crate) start: usize,
     pub(crate) text: Cow<'a, [u8]>,
 }
 
@@ -54,10 +56,12 @@ impl<'a> Iterator for Lines<'a> {
 
     fn next(&mut self) -> Option<Line<'a>> {
         let index = self.physical;
+        let start = self.pos;
         let first = self.next_physical()?;
         if !continues(first) {
             return Some(Line {
                 index,
+                start,
                 text: Cow::Borrowed(first),
             });
         }
@@ -78,6 +82,7 @@ impl<'a> Iterator for Lines<'a> {
         }
         Some(Line {
             index,
+            start,
             text: Cow::Owned(joined),
         })
     }

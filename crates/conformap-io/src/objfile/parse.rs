@@ -12,6 +12,10 @@ use crate::error::ObjProblem;
 /// Marks a face corner without a texture coordinate.
 pub(crate) const NO_UV: u32 = u32::MAX;
 
+/// Marks a vertex whose numbers cannot be copied from the file's text (a homogeneous `w`,
+/// colours after the position, a continued line): the writer formats it.
+pub(crate) const NO_SPAN: (usize, usize) = (usize::MAX, 0);
+
 /// Statements that are valid OBJ but carry nothing this reader uses.
 const IGNORED: &[&[u8]] = &[
     b"o",
@@ -64,6 +68,9 @@ impl Counts {
 pub(crate) struct Parsed {
     pub(crate) positions: Vec<[f64; 3]>,
     pub(crate) vertex_lines: Vec<usize>,
+    /// Per vertex, the byte range `(start, len)` in the text of its three numbers as
+    /// written (`x y z`, parsed by the fast path), or [`NO_SPAN`].
+    pub(crate) vertex_spans: Vec<(usize, usize)>,
     pub(crate) texcoords: Vec<[f64; 2]>,
     /// Triangles, 0-based global vertex indices.
     pub(crate) faces: Vec<[u32; 3]>,
@@ -84,6 +91,7 @@ impl Parsed {
         Self {
             positions: vec![[0.0; 3]; total.v],
             vertex_lines: vec![0; total.v],
+            vertex_spans: vec![NO_SPAN; total.v],
             texcoords: vec![[0.0; 2]; total.vt],
             faces: vec![[0; 3]; total.tri],
             face_uv: if total.vt > 0 {
@@ -106,6 +114,7 @@ impl Parsed {
             &mut self.vertex_lines[..],
             &mut self.texcoords[..],
         );
+        let mut sp = &mut self.vertex_spans[..];
         let (mut fc, mut fu, mut fl) = (
             &mut self.faces[..],
             &mut self.face_uv[..],
@@ -116,6 +125,8 @@ impl Parsed {
             pos = rest;
             let (b, rest) = std::mem::take(&mut vl).split_at_mut(c.v);
             vl = rest;
+            let (spans, rest) = std::mem::take(&mut sp).split_at_mut(c.v);
+            sp = rest;
             let (t, rest) = std::mem::take(&mut tc).split_at_mut(c.vt);
             tc = rest;
             let (f, rest) = std::mem::take(&mut fc).split_at_mut(c.tri);
@@ -127,6 +138,7 @@ impl Parsed {
             out.push(Sink {
                 positions: a,
                 vertex_lines: b,
+                vertex_spans: spans,
                 texcoords: t,
                 faces: f,
                 face_uv: u,
@@ -134,6 +146,7 @@ impl Parsed {
                 nv: 0,
                 nvt: 0,
                 nf: 0,
+                noted: 0,
             });
         }
         out
@@ -144,6 +157,7 @@ impl Parsed {
 pub(crate) struct Sink<'a> {
     positions: &'a mut [[f64; 3]],
     vertex_lines: &'a mut [usize],
+    vertex_spans: &'a mut [(usize, usize)],
     texcoords: &'a mut [[f64; 2]],
     faces: &'a mut [[u32; 3]],
     face_uv: &'a mut [[u32; 3]],
@@ -151,17 +165,20 @@ pub(crate) struct Sink<'a> {
     nv: usize,
     nvt: usize,
     nf: usize,
+    /// Point, line and free-form statements ignored.
+    noted: usize,
 }
 
 impl Sink<'_> {
-    fn vertex(&mut self, p: [f64; 3], line: usize) -> Result<(), ObjProblem> {
-        let (Some(slot), Some(l)) = (
+    fn vertex(&mut self, p: [f64; 3], line: usize, span: (usize, usize)) -> Result<(), ObjProblem> {
+        let (Some(slot), Some(l), Some(sp)) = (
             self.positions.get_mut(self.nv),
             self.vertex_lines.get_mut(self.nv),
+            self.vertex_spans.get_mut(self.nv),
         ) else {
             return Err(ObjProblem::Miscounted);
         };
-        (*slot, *l) = (p, line);
+        (*slot, *l, *sp) = (p, line, span);
         self.nv += 1;
         Ok(())
     }
@@ -251,9 +268,11 @@ fn words(s: &[u8]) -> usize {
 }
 
 /// Parses a chunk into `sink` (room for exactly its elements: [`Parsed::sinks`] with the
-/// chunk's [`count`]). `before`: lines and elements before it; `total`: in the whole file.
+/// chunk's [`count`]). `offset`: the chunk's byte offset in the text (for the vertex
+/// spans); `before`: lines and elements before it; `total`: in the whole file.
 pub(crate) fn parse_into(
     chunk: &[u8],
+    offset: usize,
     before: Counts,
     total: Counts,
     sink: &mut Sink<'_>,
@@ -263,15 +282,14 @@ pub(crate) fn parse_into(
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for line in Lines::new(chunk) {
         let lineno = before.lines + line.index + 1;
-        if let Err(problem) = statement(
-            &line.text,
-            lineno,
-            &mut seen,
-            total,
-            sink,
-            &mut out.noted,
-            &mut corners,
-        ) {
+        // where the line's text sits in the whole text (a joined line has no place)
+        let at = match line.text {
+            std::borrow::Cow::Borrowed(_) => Some(offset + line.start),
+            std::borrow::Cow::Owned(_) => None,
+        };
+        if let Err(problem) =
+            statement(&line.text, at, lineno, &mut seen, total, sink, &mut corners)
+        {
             let problem = if std::str::from_utf8(&line.text).is_err() {
                 ObjProblem::NotUtf8
             } else {
@@ -281,6 +299,7 @@ pub(crate) fn parse_into(
             break;
         }
     }
+    out.noted = sink.noted;
     out
 }
 
@@ -292,7 +311,7 @@ pub(crate) fn parse_text(text: &[u8]) -> Parsed {
     let mut whole = Parsed::with_counts(total);
     let outcome = {
         let mut sinks = whole.sinks(&[total]);
-        parse_into(text, Counts::default(), total, &mut sinks[0])
+        parse_into(text, 0, Counts::default(), total, &mut sinks[0])
     };
     whole.noted = outcome.noted;
     whole.error = outcome.error;
@@ -301,11 +320,11 @@ pub(crate) fn parse_text(text: &[u8]) -> Parsed {
 
 fn statement(
     line: &[u8],
+    at: Option<usize>,
     lineno: usize,
     seen: &mut Counts,
     total: Counts,
     p: &mut Sink<'_>,
-    noted: &mut usize,
     corners: &mut Vec<(u32, u32)>,
 ) -> Result<(), ObjProblem> {
     let Some((keyword, mut rest)) = split_keyword(line) else {
@@ -313,8 +332,12 @@ fn statement(
     };
     match keyword {
         b"v" => {
-            if let Some(pos) = fast_floats::<3>(rest) {
-                p.vertex(pos, lineno)?;
+            if let Some((pos, (start, end))) = fast_floats::<3>(rest) {
+                // `rest` is the end of `line`: the numbers' place in the whole text
+                let span = at.map_or(NO_SPAN, |a| {
+                    (a + line.len() - rest.len() + start, end - start)
+                });
+                p.vertex(pos, lineno, span)?;
                 seen.v += 1;
                 return Ok(());
             }
@@ -328,11 +351,11 @@ fn statement(
                 }
                 pos = pos.map(|c| c / x[3]);
             }
-            p.vertex(pos, lineno)?;
+            p.vertex(pos, lineno, NO_SPAN)?;
             seen.v += 1;
         }
         b"vt" => {
-            if let Some(t) = fast_floats::<2>(rest) {
+            if let Some((t, _)) = fast_floats::<2>(rest) {
                 p.texcoord(t)?;
                 seen.vt += 1;
                 return Ok(());
@@ -370,7 +393,7 @@ fn statement(
             }
         }
         k if k.first() == Some(&b'#') || IGNORED.contains(&k) => {}
-        k if IGNORED_NOTED.contains(&k) => *noted += 1,
+        k if IGNORED_NOTED.contains(&k) => p.noted += 1,
         k => {
             let keyword = std::str::from_utf8(k).map_err(|_| ObjProblem::NotUtf8)?;
             return Err(ObjProblem::UnknownStatement {
@@ -427,21 +450,28 @@ fn skip_blanks(s: &[u8]) -> &[u8] {
 
 /// The fast path of a `v`/`vt`/`vn` line: exactly `N` numbers, each read where it starts
 /// (`parse_partial` finds its end, so the bytes are scanned once) and ended by a blank or
-/// the line's end. `None` for anything else (another count, a bad number), which the
-/// general path then reads or reports; on the lines it accepts both paths give the same
-/// bits, `parse_partial` being `parse` of the longest number at the start.
-fn fast_floats<const N: usize>(mut s: &[u8]) -> Option<[f64; N]> {
+/// the line's end, and the byte range `(start, end)` in `s` from the first number's start
+/// to the last one's end. `None` for anything else (another count, a bad number), which
+/// the general path then reads or reports; on the lines it accepts both paths give the
+/// same bits, `parse_partial` being `parse` of the longest number at the start.
+fn fast_floats<const N: usize>(s: &[u8]) -> Option<([f64; N], (usize, usize))> {
     let mut out = [0.0; N];
+    let mut rest = s;
+    let mut start = None;
     for slot in &mut out {
-        s = skip_blanks(s);
-        let (x, len) = fast_float2::parse_partial::<f64, _>(s).ok()?;
-        s = &s[len..];
-        if s.first().is_some_and(|&b| !is_blank(b)) {
+        rest = skip_blanks(rest);
+        start.get_or_insert(s.len() - rest.len());
+        let (x, len) = fast_float2::parse_partial::<f64, _>(rest).ok()?;
+        rest = &rest[len..];
+        if rest.first().is_some_and(|&b| !is_blank(b)) {
             return None;
         }
         *slot = x;
     }
-    s.iter().all(|&b| is_blank(b)).then_some(out)
+    let end = s.len() - rest.len();
+    rest.iter()
+        .all(|&b| is_blank(b))
+        .then_some((out, (start.unwrap_or(end), end)))
 }
 
 /// An optionally signed decimal integer at the start of `s`: its value and length, `None`
@@ -725,11 +755,19 @@ mod tests {
             "2.2250738585072011e-308",
             "123456789012345678901",
         ];
-        for a in numbers_tokens {
-            for b in numbers_tokens {
+        for a_tok in numbers_tokens {
+            for b_tok in numbers_tokens {
                 for sep in [" ", "\t", "  "] {
-                    let line = format!("{sep}{a}{sep}{b}{sep}1.25{sep}");
-                    let fast = fast_floats::<3>(line.as_bytes());
+                    let line = format!("{sep}{a_tok}{sep}{b_tok}{sep}1.25{sep}");
+                    let fast = fast_floats::<3>(line.as_bytes()).map(|(x, (a, b))| {
+                        // the span holds exactly the three numbers
+                        let text = &line[a..b];
+                        assert_eq!(
+                            text,
+                            format!("{a_}{sep}{b_}{sep}1.25", a_ = a_tok, b_ = b_tok)
+                        );
+                        x
+                    });
                     let mut rest = line.as_bytes();
                     let mut x = [0.0; 6];
                     let general = numbers("v", &mut rest, &mut x, &[3]);

@@ -8,7 +8,7 @@ use conformap_mesh::MeshError;
 use rayon::prelude::*;
 
 use super::lines::split_chunks;
-use super::parse::{count, parse_into, ChunkOutcome, Counts, Parsed, NO_UV};
+use super::parse::{count, parse_into, ChunkOutcome, Counts, Parsed, Sink, NO_UV};
 use crate::corner_uv::CornerUv;
 use crate::error::{IoError, Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
@@ -22,9 +22,13 @@ const PARALLEL_MIN_BYTES: usize = 1 << 20;
 const CHUNKS_PER_THREAD: usize = 8;
 
 /// Reads an OBJ file's bytes without validating the mesh. `path` only names the file in
-/// errors.
-pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError> {
+/// errors. Also returns the span of each vertex's numbers in `bytes` (see [`VertexText`]).
+pub(crate) fn read_obj_raw(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<(RawMesh, Vec<(usize, usize)>), IoError> {
     let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let bom = bytes.len() - text.len();
     let n = if text.len() < PARALLEL_MIN_BYTES {
         1
     } else {
@@ -43,18 +47,29 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
         before.push(acc);
         acc = acc.add(c);
     }
+    // each chunk's byte offset in `bytes` (the chunks tile the text in order)
+    let offsets: Vec<usize> = chunks
+        .iter()
+        .scan(bom, |at, c| {
+            let start = *at;
+            *at += c.len();
+            Some(start)
+        })
+        .collect();
     let mut whole = Parsed::with_counts(total);
     let outcomes: Vec<ChunkOutcome> = {
         let sinks = whole.sinks(&counts);
-        let jobs = chunks.into_iter().zip(before).zip(sinks);
+        let jobs = chunks.into_iter().zip(offsets).zip(before).zip(sinks);
+        let parse = |(((c, at), b), mut sink): (((&[u8], usize), Counts), Sink<'_>)| {
+            parse_into(c, at, b, total, &mut sink)
+        };
         if counts.len() > 1 {
             jobs.collect::<Vec<_>>()
                 .into_par_iter()
-                .map(|((c, b), mut sink)| parse_into(c, b, total, &mut sink))
+                .map(parse)
                 .collect()
         } else {
-            jobs.map(|((c, b), mut sink)| parse_into(c, b, total, &mut sink))
-                .collect()
+            jobs.map(parse).collect()
         }
     };
     // each chunk stops at its first bad line, so the first chunk with one has the file's
@@ -86,7 +101,8 @@ pub(crate) fn read_obj_raw(bytes: &[u8], path: &Path) -> Result<RawMesh, IoError
     }
     source.vertex_lines = Some(whole.vertex_lines);
     source.face_lines = Some(whole.face_lines);
-    Ok(RawMesh::new(whole.positions, whole.faces, uv, source, None).with_corner_uv(corner_uv))
+    let raw = RawMesh::new(whole.positions, whole.faces, uv, source, None);
+    Ok((raw.with_corner_uv(corner_uv), whole.vertex_spans))
 }
 
 /// The texture coordinate of every corner, when every corner has one.
@@ -157,7 +173,7 @@ mod tests {
     #[test]
     fn several_objects_keep_file_order() {
         let text = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 3 1 2\no b\nv 5 5 5\nf 4 1 2\n";
-        let raw = read_obj_raw(text, Path::new("t.obj")).unwrap();
+        let raw = read_obj_raw(text, Path::new("t.obj")).unwrap().0;
         assert_eq!(raw.positions[2], [0.0, 1.0, 0.0]);
         assert_eq!(raw.faces, vec![[2, 0, 1], [3, 0, 1]]);
         // the faces share vertices 0, 1 and run edge 0-1 the same way, so validation
@@ -188,7 +204,7 @@ mod tests {
         assert!(text.len() > PARALLEL_MIN_BYTES);
         let bytes = text.as_bytes();
         let one = super::super::parse::parse_text(bytes);
-        let raw = read_obj_raw(bytes, Path::new("t.obj")).unwrap();
+        let raw = read_obj_raw(bytes, Path::new("t.obj")).unwrap().0;
         assert_eq!(raw.positions, one.positions);
         assert_eq!(raw.faces, one.faces);
         assert_eq!(raw.source.vertex_lines.unwrap(), one.vertex_lines);

@@ -6,6 +6,8 @@
 
 use rayon::prelude::*;
 
+use crate::loaded::VertexText;
+
 /// Rows (vertices, texture coordinates or faces) formatted per block: large enough that a
 /// block (~0.5 ms) is far more work than handing it to a thread, small enough that the
 /// last blocks balance two cores.
@@ -34,18 +36,24 @@ pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>
 }
 
 /// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines, as parts to be
-/// written in order.
+/// written in order. `text`: the file the points were read from, whose numbers are copied
+/// where they parse to exactly the point (see [`VertexText`]).
 pub(crate) fn encode_obj_with_uv(
     points: &[[f64; 3]],
     uv: &[[f64; 2]],
     faces: &[[u32; 3]],
+    text: Option<&VertexText>,
 ) -> Vec<Vec<u8>> {
     let header = format!(
         "# conformap-io: {} vertices, {} faces, one vt per vertex (vt k belongs to v k)\n",
         points.len(),
         faces.len()
     );
-    let mut jobs = vertex_and_vt_blocks(points, uv);
+    let mut jobs = match text {
+        Some(text) => vertex_blocks_from_text(points, text),
+        None => section(points, 3 * 26, push_vertex),
+    };
+    jobs.extend(vt_blocks(uv));
     jobs.extend(section(faces, 3 * 18, |out, f| {
         push_face_with_vt(out, f, f)
     }));
@@ -81,11 +89,41 @@ pub(crate) fn encode_obj_with_corner_uv(
 /// The blocks of the `v` lines and the `vt` lines.
 fn vertex_and_vt_blocks<'a>(points: &'a [[f64; 3]], vt: &'a [[f64; 2]]) -> Vec<Block<'a>> {
     let mut jobs = section(points, 3 * 26, push_vertex);
-    jobs.extend(section(vt, 2 * 26, |out, t| {
+    jobs.extend(vt_blocks(vt));
+    jobs
+}
+
+/// The blocks of the `vt` lines.
+fn vt_blocks(vt: &[[f64; 2]]) -> Vec<Block<'_>> {
+    section(vt, 2 * 26, |out, t| {
         out.extend_from_slice(b"vt");
         push_floats(out, t);
-    }));
-    jobs
+    })
+}
+
+/// The blocks of the `v` lines, each vertex's numbers copied from `text` where they parse
+/// to exactly the point (checking costs less than formatting), formatted otherwise.
+fn vertex_blocks_from_text<'a>(points: &'a [[f64; 3]], text: &'a VertexText) -> Vec<Block<'a>> {
+    (0..points.len())
+        .step_by(BLOCK_ROWS)
+        .map(|first| {
+            Box::new(move || {
+                let last = (first + BLOCK_ROWS).min(points.len());
+                let mut out = Vec::with_capacity(3 * 26 * (last - first) + 16);
+                for (v, p) in points.iter().enumerate().take(last).skip(first) {
+                    match text.vertex(v).filter(|_| text.matches(v, *p)) {
+                        Some(numbers) => {
+                            out.extend_from_slice(b"v ");
+                            out.extend_from_slice(numbers);
+                            out.push(b'\n');
+                        }
+                        None => push_vertex(&mut out, p),
+                    }
+                }
+                out
+            }) as Block<'a>
+        })
+        .collect()
 }
 
 /// `f v/vt v/vt v/vt` (1-based) and the line end.
