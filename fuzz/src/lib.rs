@@ -248,8 +248,15 @@ pub fn param(data: &[u8]) {
             if let Some(uv) = &map.uv {
                 assert_eq!(uv.len(), mesh.num_vertices());
             }
-            let (planar, _) = map.planar();
-            assert_eq!(planar.len(), mesh.num_vertices());
+            use conformap_cli::commands::param::PlanarMap;
+            match map.planar_map().0 {
+                PlanarMap::PerVertex(p) => assert_eq!(p.len(), mesh.num_vertices()),
+                PlanarMap::PerCorner(c) => assert_eq!(c.len(), 3 * mesh.num_faces()),
+            }
+            // a seamed map is refused where one value per vertex is needed, with a hint
+            if let Err(failure) = map.planar() {
+                assert!(failure.hint().is_some_and(|h| !h.is_empty()), "no hint: {failure}");
+            }
         }
         Err(failure) => {
             assert_eq!(failure.exit_code(), 1, "{failure}");
