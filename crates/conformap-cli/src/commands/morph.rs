@@ -184,11 +184,7 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
     let t = Instant::now();
     let mut staged = Staged::new();
     match &target {
-        Target::Frames(paths) => {
-            for (path, &time) in paths.iter().zip(times) {
-                staged.flat(path, &m.frame(time), m.faces())?;
-            }
-        }
+        Target::Frames(paths) => staged.obj_frames(paths, m.faces(), |i| m.frame(times[i]))?,
         Target::Glb(path) => stage_glb(&mut staged, path, m, times)?,
     }
     let write_ms = ms_since(t);
