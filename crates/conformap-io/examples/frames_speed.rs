@@ -1,7 +1,7 @@
 //! Time of writing morph frames as OBJ: 60 frames of one mesh (default the shared neutral
 //! face), the old path (`write_flat` per frame, in order) against [`ObjFrames`] in order
-//! and on all threads, and what the disk's `fsync` costs of it (the same bytes written
-//! with `std::fs::write`, no sync).
+//! and on all threads, formatting alone, and the same bytes written with
+//! `std::fs::write` (no temporary sibling, no rename).
 //!
 //! ```text
 //! cargo run --release -p conformap-io --example frames_speed -- [MESH.obj] [FRAMES] [OUT_DIR]
@@ -73,7 +73,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         std::hint::black_box(total);
         Ok(())
     });
-    time("encode + fs::write (no sync), in order", &|| {
+    time("encode + fs::write, in order", &|| {
         for i in 0..n {
             std::fs::write(
                 path("d", i),
@@ -82,7 +82,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         Ok(())
     });
-    time("encode + fs::write (no sync), all threads", &|| {
+    time("encode + fs::write, all threads", &|| {
         (0..n).into_par_iter().try_for_each(|i| {
             let bytes = frames.encode(&frame(i)).map_err(|e| format!("{e:?}"))?;
             std::fs::write(path("e", i), bytes).map_err(Into::into)

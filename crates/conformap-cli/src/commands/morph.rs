@@ -72,7 +72,8 @@ pub struct MorphCommandReport {
     /// The frame index of every key surface.
     pub key_frames: Vec<usize>,
     /// The library's report: per key surface its disk map, registration (energy, λ used,
-    /// folds, notes), landmark errors, flipped faces of its key frame, stage timings.
+    /// folds, notes), how S1's crease loops were carried, landmark errors, flipped faces
+    /// of its key frame, stage timings.
     pub morph: MorphReport,
     /// Wall-clock milliseconds: `read` (all surfaces), `solve` (the morph), `write`,
     /// `total`.
