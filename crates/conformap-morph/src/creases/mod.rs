@@ -1,7 +1,7 @@
 //! Closed crease loops and their correspondence between surfaces.
 //!
 //! A closed loop of sharp edges (two faces whose normals turn by more than
-//! [`CREASE_ANGLE_DEG`]) is a feature a morph must carry onto the same feature: on the
+//! [`crate::quality::CREASE_ANGLE_DEG`]) is a feature a morph must carry onto the same feature: on the
 //! shared faces the three loops are the rims of the zipped eye and mouth hole fills, where
 //! the skin, rolled into the eye socket or the mouth (normals facing backwards), meets
 //! the fill spanning the opening (normals facing forwards) at 127–178°. Landmarks pin a
@@ -12,9 +12,9 @@
 //! - [`crease_loops`]: the loops of one mesh.
 //! - `match_loops`: which loop of a key surface is which loop of S1, in S1's disk.
 //! - `rim_targets`: where every vertex of a matched S1 loop goes on the key surface's
-//!   loop (proportional 3D arc length, shifted to fit the registration), exactly on one of
-//!   its edges.
-//! - [`extend`]: the harmonic extension of those moves to S1's other vertices.
+//!   loop (corner to corner, the same share of arc length along each side), exactly on
+//!   one of its edges.
+//! - [`RimExtension`]: the harmonic extension of those moves to S1's other vertices.
 
 mod extend;
 

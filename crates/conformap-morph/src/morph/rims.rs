@@ -172,7 +172,7 @@ fn moved(disk: &[Complex64], delta: &[Complex64]) -> Vec<Complex64> {
 }
 
 /// The centroids of the faces whose image under `map` is folded or degenerate (against
-/// the orientation `sigma`), as [`folded_faces`] counts them.
+/// the orientation `sigma`), as [`crate::folded_faces`] counts them.
 fn folded_centroids(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> Vec<Complex64> {
     faces
         .iter()
