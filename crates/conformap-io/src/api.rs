@@ -156,7 +156,7 @@ pub(crate) fn write_target(
     Ok((format, bad))
 }
 
-fn check_finite<'a>(rows: impl Iterator<Item = &'a [f64]>) -> Result<(), WriteProblem> {
+pub(crate) fn check_finite<'a>(rows: impl Iterator<Item = &'a [f64]>) -> Result<(), WriteProblem> {
     for (vertex, row) in rows.enumerate() {
         if let Some(&value) = row.iter().find(|x| !x.is_finite()) {
             return Err(WriteProblem::NonFinite { vertex, value });

@@ -12,8 +12,9 @@
 //!   [`SourceInfo`] mapping mesh vertices and faces back to the file.
 //! - [`write_mesh_with_uv`]: the mesh with one texture coordinate per vertex;
 //!   [`write_mesh_with_corner_uv`]: the mesh with a seamed map ([`CornerUv`], `f v/vt`);
-//!   [`write_flat`]: any points and triangles (a flat or spherical map). Output appears
-//!   complete or not at all.
+//!   [`write_flat`]: any points and triangles (a flat or spherical map); [`ObjFrames`]:
+//!   many frames of one set of triangles (a morph), the face lines formatted once. Output
+//!   appears complete or not at all.
 //! - [`read_raw_mesh`] / [`read_raw_mesh_from_bytes`]: the same parsing without validation,
 //!   for callers that repair first ([`RawMesh::validate`] is the rest of [`read_mesh`]).
 //! - [`IoError`]: the one error type; variants name the file and the line ([`Origin`]) or
@@ -52,6 +53,7 @@ mod atomic;
 mod coincident;
 mod corner_uv;
 mod error;
+mod frames;
 mod gltffile;
 mod loaded;
 mod objfile;
@@ -61,6 +63,7 @@ pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
 pub use coincident::{coincident_vertices, weld_coincident, Welded};
 pub use corner_uv::{write_mesh_with_corner_uv, CornerUv};
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
+pub use frames::ObjFrames;
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
 pub use loaded::{Format, LoadedMesh, SourceInfo, VertexText, NO_VERTEX};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};

@@ -2,10 +2,11 @@
 //! surfaces given) drawn with `conformap-render`, S1's disk map as a checkerboard (so a
 //! tear or a fold shows as broken cells), and a close-up of the eyes and mouth coloured
 //! by the angle distortion of that map with the faces flipped against the key surface
-//! flagged magenta.
+//! flagged magenta. `--no-creases`: without carrying S1's crease loops (the hole-fill
+//! rims) onto the key surfaces', for comparison.
 //!
 //! ```text
-//! cargo run --release -p conformap-morph --example keyframes -- [--hard] [OUT_DIR]
+//! cargo run --release -p conformap-morph --example keyframes -- [--hard] [--no-creases] [OUT_DIR]
 //! ```
 //!
 //! Writes `OUT_DIR/key_K.png` and `OUT_DIR/key_K_closeup.png` (default `target/morph`).
@@ -26,6 +27,10 @@ fn main() -> Result<()> {
     if let Some(k) = args.iter().position(|a| a == "--hard") {
         args.remove(k);
         options = options.with_hard_landmarks();
+    }
+    if let Some(k) = args.iter().position(|a| a == "--no-creases") {
+        args.remove(k);
+        options = options.with_crease_matching(false);
     }
     let out = PathBuf::from(args.pop().unwrap_or_else(|| "target/morph".into()));
     std::fs::create_dir_all(&out)?;
@@ -60,7 +65,7 @@ fn main() -> Result<()> {
             s1.faces(),
             surfaces[k].mesh.positions(),
             surfaces[k].mesh.faces(),
-            &m.locations()[k],
+            &m.landings()[k],
         );
         // the close-up: faces of S1 within a radius of the eye and mouth landmarks, the
         // flipped ones with two corners swapped (a folded face, flagged by the renderer)

@@ -20,6 +20,8 @@
 //!   functions.
 //! - `morph`: [`morph`] → [`Morph`] — all of the above for K surfaces, with a
 //!   [`MorphReport`] per key surface; [`Morph::frame`] gives the positions at any time.
+//! - [`creases`]: closed crease loops (e.g. the rims of zipped hole fills) and how S1's
+//!   are carried onto every key surface's.
 //! - `quality`: checks of frames (flips against the key surface, creases, fold patches,
 //!   degenerate faces, steps, point–triangle distance).
 //!
@@ -38,6 +40,7 @@
 //! # Ok::<(), conformap_morph::MorphError>(())
 //! ```
 
+pub mod creases;
 mod error;
 mod homotopy;
 mod landmarks;
@@ -55,8 +58,8 @@ pub use homotopy::CubicHomotopy;
 pub use landmarks::Landmarks;
 pub use locate::{Location, TriangleGrid, LOCATE_INSIDE_TOL, LOCATE_TRIANGLES_PER_CELL};
 pub use morph::{
-    morph, DiskSummary, KeyReport, KeyTimings, LocateSummary, Morph, MorphOptions, MorphReport,
-    Surface,
+    morph, CreaseSummary, DiskSummary, KeyReport, KeyTimings, LocateSummary, Morph, MorphOptions,
+    MorphReport, Surface,
 };
 pub use normalize::{normalize_disk_map, Normalized, NORMALIZE_BOUNDARY_TOL};
 pub use register::{

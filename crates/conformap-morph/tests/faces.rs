@@ -24,10 +24,9 @@ fn fixtures() -> PathBuf {
 }
 
 /// Every claim of the issue that holds per key surface; returns the largest landmark
-/// error (relative to the diagonal) over the key surfaces. `patch`: the largest group of
-/// flipped key-frame faces allowed (all of them on the pleated hole fills); away from
-/// creases only isolated slivers are allowed.
-fn check(surfaces: &[Surface], m: &Morph, frames: usize, patch: usize) -> f64 {
+/// error (relative to the diagonal) over the key surfaces. `patch[k - 1]`: the largest
+/// group of flipped faces allowed in key frame `k` (the issue: 1, isolated slivers).
+fn check(surfaces: &[Surface], m: &Morph, frames: usize, patch: &[usize]) -> f64 {
     let s1 = &surfaces[0].mesh;
     let times = m.frame_times(frames).unwrap();
     let keys = m.key_frames(frames).unwrap();
@@ -59,16 +58,17 @@ fn check(surfaces: &[Surface], m: &Morph, frames: usize, patch: usize) -> f64 {
         // and reached its goals
         let warp = reg.warp.unwrap();
         assert!(warp.reached && warp.steps >= 1, "surface {k}: {warp:?}");
-        // flipped faces of the key frame: away from creases isolated slivers at most
-        // (measured: none on wry and pout); on the pleated fills of the closed eye and
-        // mouth holes, where the key surface's own normal flips from face to face,
-        // patches up to `patch` (measured 15 on wry, 18 on pout)
-        assert!(
-            r.key_frame_largest_flip_patch_off_creases <= 1,
-            "surface {k}: {r:?}"
+        // S1's three hole-fill rims matched with the key surface's and carried onto them
+        let c = r.creases.as_ref().unwrap();
+        assert_eq!(
+            (c.loops_s1, c.loops, c.matched),
+            (3, 3, 3),
+            "surface {k}: {c:?}"
         );
+        // no fold patch in the key frame (faces against the key surface's normal where
+        // they lie), up to `patch` faces
         assert!(
-            r.key_frame_largest_flip_patch <= patch,
+            r.key_frame_largest_flip_patch <= patch[k - 1],
             "surface {k}: {r:?}"
         );
         worst = worst.max(r.landmark_error_max_rel);
@@ -103,7 +103,7 @@ fn neutral_to_pout_soft_and_hard() {
         surface(&fixtures(), "ict_pout"),
     ];
     let soft = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
-    let soft_err = check(&surfaces, &soft, 30, 18);
+    let soft_err = check(&surfaces, &soft, 30, &[1]);
     // measured 9.0e-4: Eq. 34 at λ = 1000 folds 56 faces; λ backed off to 4.3e-2, then
     // the landmark warp to where λ = 1000 puts the landmarks (see the README)
     assert!(soft_err < 0.01, "soft landmark error {soft_err:.3e}");
@@ -116,7 +116,7 @@ fn neutral_to_pout_soft_and_hard() {
     let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks())
         .unwrap_or_else(|e| panic!("{e}"));
     // hard landmarks fold nothing either (the hard Eq. 34 alone folds 56 faces)
-    let hard_err = check(&surfaces, &hard, 30, 18);
+    let hard_err = check(&surfaces, &hard, 30, &[1]);
     assert!(hard_err <= 1e-9, "hard landmark error {hard_err:.3e}");
     let t = hard.frame_times(30).unwrap();
     let last = hard.frame(t[29]);
@@ -133,6 +133,23 @@ fn neutral_to_pout_soft_and_hard() {
     }
 }
 
+/// Neutral onto pout: S1's three rims land exactly on pout's (every rim vertex on an edge
+/// of pout's rim), and S1 morphed onto itself lies on itself without a flipped face,
+/// while the normals at the vertices (the earlier measure) flag the faces along the
+/// rims, whose vertices sit on the crease.
+#[test]
+fn rims_land_on_rims_and_the_identity_flips_nothing() {
+    let s1 = surface(&fixtures(), "ict_neutral");
+    let s2 = surface(&fixtures(), "ict_pout");
+    let m = morph(&[s1.clone(), s2], &MorphOptions::DEFAULT).unwrap();
+    let c = m.report.keys[1].creases.clone().unwrap();
+    assert!(c.rim_vertices == 158 && c.smallest_share >= 1.0, "{c:?}");
+    let same = morph(&[s1.clone(), s1], &MorphOptions::DEFAULT).unwrap();
+    let r = &same.report.keys[1];
+    assert_eq!(r.key_frame_flipped_faces, 0, "{r:?}");
+    assert!(r.key_frame_flipped_faces_at_vertices > 100, "{r:?}");
+}
+
 #[test]
 #[ignore = "reads ../shared/morph (the three faces)"]
 fn shared_three_faces_sixty_frames() {
@@ -142,7 +159,10 @@ fn shared_three_faces_sixty_frames() {
         .map(|n| surface(&dir, n))
         .collect();
     let m = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
-    let worst = check(&surfaces, &m, 60, 18);
+    // pout: isolated slivers (measured 2 flipped faces, patch 1); wry: patches of up to 3
+    // at the mouth corners, where carrying S1's mouth rim the whole way would fold S1's
+    // disk and the move is cut (measured 13 flipped faces; README, known shortfalls)
+    let worst = check(&surfaces, &m, 60, &[3, 1]);
     // measured 1.6e-4 (wry) and 9.0e-4 (pout)
     assert!(worst < 0.01, "landmark error {worst:.3e}");
     assert_eq!(m.key_frames(60).unwrap(), vec![0, 30, 59]);

@@ -72,7 +72,8 @@ pub struct MorphCommandReport {
     /// The frame index of every key surface.
     pub key_frames: Vec<usize>,
     /// The library's report: per key surface its disk map, registration (energy, λ used,
-    /// folds, notes), landmark errors, flipped faces of its key frame, stage timings.
+    /// folds, notes), how S1's crease loops were carried, landmark errors, flipped faces
+    /// of its key frame, stage timings.
     pub morph: MorphReport,
     /// Wall-clock milliseconds: `read` (all surfaces), `solve` (the morph), `write`,
     /// `total`.
@@ -184,11 +185,7 @@ pub fn run(args: &MorphArgs) -> Result<Outcome, Failure> {
     let t = Instant::now();
     let mut staged = Staged::new();
     match &target {
-        Target::Frames(paths) => {
-            for (path, &time) in paths.iter().zip(times) {
-                staged.flat(path, &m.frame(time), m.faces())?;
-            }
-        }
+        Target::Frames(paths) => staged.obj_frames(paths, m.faces(), |i| m.frame(times[i]))?,
         Target::Glb(path) => stage_glb(&mut staged, path, m, times)?,
     }
     let write_ms = ms_since(t);

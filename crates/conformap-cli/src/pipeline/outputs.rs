@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use conformap_io::{Format, SourceInfo};
 use conformap_mesh::TriMesh;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::failure::Failure;
@@ -192,6 +193,29 @@ impl Staged {
     ) -> Result<(), Failure> {
         let path = self.stage_path(target);
         conformap_io::write_flat(&path, points, faces).map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages OBJ frames of one set of triangles: `points(i)` gives the vertex positions
+    /// of the frame written to `targets[i]`. The face lines are formatted once
+    /// ([`conformap_io::ObjFrames`]); the frames are computed, formatted and written in
+    /// parallel, one buffered write each.
+    pub fn obj_frames(
+        &mut self,
+        targets: &[PathBuf],
+        faces: &[[u32; 3]],
+        points: impl Fn(usize) -> Vec<[f64; 3]> + Sync,
+    ) -> Result<(), Failure> {
+        let frames = conformap_io::ObjFrames::new(faces);
+        let staged: Vec<PathBuf> = targets.iter().map(|t| self.stage_path(t)).collect();
+        staged
+            .par_iter()
+            .zip(targets)
+            .enumerate()
+            .try_for_each(|(i, (path, target))| {
+                frames
+                    .write(path, &points(i))
+                    .map_err(|e| renamed(e.into(), path, target))
+            })
     }
 
     /// Stages a PNG picture.

@@ -7,4 +7,6 @@ mod read;
 mod write;
 
 pub(crate) use read::read_obj_raw;
-pub(crate) use write::{encode_obj, encode_obj_with_corner_uv, encode_obj_with_uv};
+pub(crate) use write::{
+    encode_obj, encode_obj_with_corner_uv, encode_obj_with_uv, face_lines, obj_header, vertex_lines,
+};

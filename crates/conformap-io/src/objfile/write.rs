@@ -18,21 +18,38 @@ type Block<'a> = Box<dyn Fn() -> Vec<u8> + Send + Sync + 'a>;
 
 /// `v` lines and 1-based `f a b c` lines, as parts to be written in order.
 pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
-    let header = format!(
-        "# conformap-io: {} vertices, {} faces\n",
-        points.len(),
-        faces.len()
-    );
     let mut jobs = section(points, 3 * 26, push_vertex);
-    jobs.extend(section(faces, 3 * 9, |out, f| {
-        out.push(b'f');
-        for &i in f {
-            out.push(b' ');
-            push_index(out, i);
-        }
-        out.push(b'\n');
-    }));
-    with_header(header, jobs)
+    jobs.extend(section(faces, 3 * 9, push_face));
+    with_header(obj_header(points.len(), faces.len()), jobs)
+}
+
+/// The first line of [`encode_obj`].
+pub(crate) fn obj_header(vertices: usize, faces: usize) -> String {
+    format!("# conformap-io: {vertices} vertices, {faces} faces\n")
+}
+
+/// The `v` lines of [`encode_obj`], as parts in order.
+pub(crate) fn vertex_lines(points: &[[f64; 3]]) -> Vec<Vec<u8>> {
+    let mut parts = with_header(String::new(), section(points, 3 * 26, push_vertex));
+    parts.remove(0);
+    parts
+}
+
+/// The 1-based `f a b c` lines of [`encode_obj`], as parts in order.
+pub(crate) fn face_lines(faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
+    let mut parts = with_header(String::new(), section(faces, 3 * 9, push_face));
+    parts.remove(0);
+    parts
+}
+
+/// `f a b c` (1-based) and the line end.
+fn push_face(out: &mut Vec<u8>, f: &[u32; 3]) {
+    out.push(b'f');
+    for &i in f {
+        out.push(b' ');
+        push_index(out, i);
+    }
+    out.push(b'\n');
 }
 
 /// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines, as parts to be

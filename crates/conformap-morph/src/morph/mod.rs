@@ -2,6 +2,7 @@
 //! location of S1's vertices on every key surface, and the spline homotopy.
 
 mod report;
+mod rims;
 
 use std::time::Instant;
 
@@ -10,12 +11,13 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::quality::{crease_faces, flipped_against_key, largest_patch, CREASE_ANGLE_DEG};
+use crate::quality::{flipped_against_key, flipped_at_vertices, largest_patch, CREASE_ANGLE_DEG};
 use crate::{
     normalize_disk_map, register_disk, CubicHomotopy, LandmarkMode, Landmarks, Location,
     MorphError, RegisterOptions, TriangleGrid,
 };
-pub use report::{DiskSummary, KeyReport, KeyTimings, LocateSummary, MorphReport};
+pub use report::{CreaseSummary, DiskSummary, KeyReport, KeyTimings, LocateSummary, MorphReport};
+use rims::{carry_rims, Rims};
 
 /// One key surface: a disk-like mesh and its landmarks.
 #[derive(Debug, Clone)]
@@ -47,6 +49,15 @@ pub struct MorphOptions {
     pub disk_method: DiskMethod,
     /// The disk map's options. Default: [`DiskOptions::DEFAULT`].
     pub disk: DiskOptions,
+    /// Carry S1's closed crease loops onto the matching loops of every key surface
+    /// (`crate::creases`): each vertex of an S1 loop lands on the key surface's loop, and
+    /// the rest of S1's disk follows harmonically. Default: `true` (a crease that lands a
+    /// fraction of a face beside its counterpart folds the thin faces along it; on the
+    /// shared faces these are the rims of the zipped eye and mouth fills).
+    pub match_creases: bool,
+    /// The turn of the normals (degrees) above which an edge is a crease for
+    /// [`Self::match_creases`]. Default: [`CREASE_ANGLE_DEG`].
+    pub crease_angle_deg: f64,
 }
 
 impl MorphOptions {
@@ -56,6 +67,8 @@ impl MorphOptions {
         key_times: None,
         disk_method: DiskMethod::CcemQn,
         disk: DiskOptions::DEFAULT,
+        match_creases: true,
+        crease_angle_deg: CREASE_ANGLE_DEG,
     };
 
     /// Soft landmarks with weight `lambda` (Eq. 34).
@@ -69,6 +82,13 @@ impl MorphOptions {
     #[must_use]
     pub fn with_hard_landmarks(mut self) -> Self {
         self.register.mode = LandmarkMode::Hard;
+        self
+    }
+
+    /// Sets [`Self::match_creases`].
+    #[must_use]
+    pub fn with_crease_matching(mut self, on: bool) -> Self {
+        self.match_creases = on;
         self
     }
 
@@ -93,6 +113,7 @@ pub struct Morph {
     faces: Vec<[u32; 3]>,
     keys: Vec<Vec<[f64; 3]>>,
     locations: Vec<Vec<Location>>,
+    landings: Vec<Vec<Location>>,
     homotopy: CubicHomotopy,
     /// What was done, per key surface.
     pub report: MorphReport,
@@ -114,6 +135,13 @@ impl Morph {
     /// `k` and barycentric coordinates; empty for `k = 0`).
     pub fn locations(&self) -> &[Vec<Location>] {
         &self.locations
+    }
+
+    /// `landings()[k][f]`: where S1's face `f` lies on surface `k` (the location of the
+    /// image of its centroid in S1's disk; empty for `k = 0`): the key face whose normal
+    /// [`crate::quality::flipped_against_key`] compares it with.
+    pub fn landings(&self) -> &[Vec<Location>] {
+        &self.landings
     }
 
     /// The spline basis (key times, weights).
@@ -206,19 +234,28 @@ struct Prepared<'m> {
 /// Morphs `surfaces[0]` (S1) through the others: their disk maps (the default method),
 /// the normalization `m₁` (first landmark to the centre, second onto the positive real
 /// axis), the registration of every other disk onto S1's (Eq. 34, boundary sliding on
-/// the circle, fold-checked), the location of S1's vertices in every registered disk,
-/// and the natural cubic spline through the K positions of every vertex.
+/// the circle, fold-checked), S1's closed crease loops carried onto every key surface's
+/// ([`MorphOptions::match_creases`]), the location of S1's vertices in every registered
+/// disk, and the natural cubic spline through the K positions of every vertex.
 ///
 /// # Errors
 /// [`MorphError::TooFewSurfaces`]; the landmark checks ([`Landmarks::check_against`],
 /// [`Landmarks::check_same_names`]); [`MorphError::Disk`] when a surface is not a disk or
 /// its map fails; [`MorphError::LandmarkOnBoundary`]; the registration's errors
-/// ([`register_disk`]); [`MorphError::InvalidOption`] for bad key times.
+/// ([`register_disk`]); [`MorphError::InvalidOption`] for bad key times or crease angle;
+/// [`MorphError::Operator`] if S1's crease-loop extension cannot be factored.
 pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, MorphError> {
     let t_all = Instant::now();
     if surfaces.len() < 2 {
         return Err(MorphError::TooFewSurfaces {
             found: surfaces.len(),
+        });
+    }
+    let angle = options.crease_angle_deg;
+    if !(angle > 0.0 && angle < 180.0) {
+        return Err(MorphError::InvalidOption {
+            name: "crease_angle_deg",
+            reason: format!("must be between 0 and 180 degrees, got {angle}"),
         });
     }
     for (k, s) in surfaces.iter().enumerate() {
@@ -248,6 +285,14 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
         .map(|&v| s1.normalized[v as usize])
         .collect();
     let s1_disk = &s1.normalized;
+    let s1_mesh = &surfaces[0].mesh;
+    let t_rims = Instant::now();
+    let rims = if options.match_creases {
+        Some(Rims::new(surfaces, &prepared[0].problem, s1_disk, options)?)
+    } else {
+        None
+    };
+    let rims_setup_ms = ms(t_rims);
     let later: Vec<_> = (1..surfaces.len())
         .into_par_iter()
         .map(|k| {
@@ -263,21 +308,39 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
             let register_ms = ms(t0);
             let t1 = Instant::now();
             let grid = TriangleGrid::new(&reg.map, surfaces[k].mesh.faces());
-            let mut locations: Vec<Location> = s1_disk.iter().map(|&z| grid.locate(z)).collect();
+            // S1's disk, its crease loops moved onto this surface's (rims: exact edge
+            // locations of the loop vertices)
+            let carried = rims
+                .as_ref()
+                .map(|r| carry_rims(r, k, &surfaces[k].mesh, &reg.map));
+            let query = carried.as_ref().map_or(s1_disk, |c| &c.query);
+            let mut locations: Vec<Location> = query.iter().map(|&z| grid.locate(z)).collect();
+            if let Some(c) = &carried {
+                for t in &c.targets {
+                    locations[t.vertex as usize] = t.location;
+                }
+            }
             if options.register.mode == LandmarkMode::Hard {
                 pin_landmarks(&mut locations, &surfaces[0], &surfaces[k]);
             }
+            let landing: Vec<Location> = s1_mesh
+                .faces()
+                .iter()
+                .map(|f| grid.locate(f.iter().map(|&v| query[v as usize]).sum::<Complex64>() / 3.0))
+                .collect();
             let key = carry(&surfaces[k].mesh, &locations);
-            Ok((reg, locations, key, register_ms, ms(t1)))
+            let crease = carried.map(|c| c.summary);
+            Ok((reg, locations, landing, key, crease, register_ms, ms(t1)))
         })
         .collect::<Result<Vec<_>, MorphError>>()?;
 
-    let s1_mesh = &surfaces[0].mesh;
-    let crease_1 = crease_faces(s1_mesh.positions(), s1_mesh.faces(), CREASE_ANGLE_DEG);
     let mut keys = vec![surfaces[0].mesh.positions().to_vec()];
     let mut locations = vec![Vec::new()];
+    let mut landings = vec![Vec::new()];
     let mut reports = vec![key_report(0, surfaces, &prepared[0], &homotopy, None)];
-    for (i, (reg, locs, key, register_ms, locate_ms)) in later.into_iter().enumerate() {
+    for (i, (reg, locs, landing, key, crease, register_ms, locate_ms)) in
+        later.into_iter().enumerate()
+    {
         let k = i + 1;
         let mut r = key_report(k, surfaces, &prepared[k], &homotopy, Some(&key));
         let snapped: Vec<f64> = locs
@@ -289,42 +352,30 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
             snapped: snapped.len(),
             max_outside: snapped.iter().copied().fold(0.0, f64::max),
         });
-        let flips = flipped_against_key(
-            &key,
-            surfaces[0].mesh.faces(),
-            surfaces[k].mesh.positions(),
-            surfaces[k].mesh.faces(),
-            &locs,
-        );
-        r.key_frame_flipped_faces = flips.len();
-        r.key_frame_largest_flip_patch = largest_patch(surfaces[0].mesh.faces(), &flips);
-        // the flips away from creases of S1 and of this surface (hole fills, lip lines)
         let sk = &surfaces[k].mesh;
-        let crease_k = crease_faces(sk.positions(), sk.faces(), CREASE_ANGLE_DEG);
-        let elsewhere: Vec<usize> = flips
-            .iter()
-            .copied()
-            .filter(|&f| {
-                !crease_1[f]
-                    && surfaces[0].mesh.faces()[f]
-                        .iter()
-                        .all(|&v| !crease_k[locs[v as usize].face as usize])
-            })
-            .collect();
-        r.key_frame_flips_off_creases = elsewhere.len();
-        r.key_frame_largest_flip_patch_off_creases =
-            largest_patch(surfaces[0].mesh.faces(), &elsewhere);
+        let flips =
+            flipped_against_key(&key, s1_mesh.faces(), sk.positions(), sk.faces(), &landing);
+        r.key_frame_flipped_faces = flips.len();
+        r.key_frame_largest_flip_patch = largest_patch(s1_mesh.faces(), &flips);
+        let at_vertices =
+            flipped_at_vertices(&key, s1_mesh.faces(), sk.positions(), sk.faces(), &locs);
+        r.key_frame_flipped_faces_at_vertices = at_vertices.len();
+        r.key_frame_largest_flip_patch_at_vertices = largest_patch(s1_mesh.faces(), &at_vertices);
+        r.creases = crease;
         r.registration = Some(reg.report);
         r.timings_ms.register = register_ms;
         r.timings_ms.locate = locate_ms;
+        r.timings_ms.creases_setup = rims_setup_ms;
         reports.push(r);
         keys.push(key);
         locations.push(locs);
+        landings.push(landing);
     }
     Ok(Morph {
         faces: surfaces[0].mesh.faces().to_vec(),
         keys,
         locations,
+        landings,
         homotopy,
         report: MorphReport {
             landmarks: surfaces[0].landmarks.names().to_vec(),
@@ -446,13 +497,15 @@ fn key_report(
         locate: None,
         landmark_error_max_rel: errors.iter().copied().fold(0.0, f64::max),
         landmark_errors_rel: errors,
+        creases: None,
         key_frame_flipped_faces: 0,
         key_frame_largest_flip_patch: 0,
-        key_frame_flips_off_creases: 0,
-        key_frame_largest_flip_patch_off_creases: 0,
+        key_frame_flipped_faces_at_vertices: 0,
+        key_frame_largest_flip_patch_at_vertices: 0,
         timings_ms: KeyTimings {
             disk_map: prep.disk_ms,
             normalize: prep.normalize_ms,
+            creases_setup: 0.0,
             register: 0.0,
             locate: 0.0,
         },

@@ -12,9 +12,13 @@ pub struct KeyTimings {
     pub disk_map: f64,
     /// The Möbius normalization.
     pub normalize: f64,
+    /// Finding the crease loops of every surface and factoring S1's extension (once for
+    /// the whole morph, repeated in every key's report; 0 for the first surface).
+    pub creases_setup: f64,
     /// The registration (0 for the first surface).
     pub register: f64,
-    /// Point location of the first surface's vertices (0 for the first surface).
+    /// Carrying S1's crease loops (matching, targets, extension, fold check) and point
+    /// location of the first surface's vertices and faces (0 for the first surface).
     pub locate: f64,
 }
 
@@ -69,21 +73,47 @@ pub struct KeyReport {
     pub landmark_errors_rel: Vec<f64>,
     /// The largest of [`Self::landmark_errors_rel`].
     pub landmark_error_max_rel: f64,
+    /// How S1's crease loops were carried onto this surface's (`None` for S1 and when
+    /// [`crate::MorphOptions::match_creases`] is off).
+    pub creases: Option<CreaseSummary>,
     /// Faces of the key frame (S1's connectivity at this surface's positions) whose
-    /// normal points against this surface's normal where they lie.
+    /// normal points against this surface's normal where the face lies (the key face
+    /// under the image of its centroid, [`crate::quality::flipped_against_key`]).
     pub key_frame_flipped_faces: usize,
     /// The largest edge-connected group of such faces (1 = isolated slivers only).
     pub key_frame_largest_flip_patch: usize,
-    /// Of [`Self::key_frame_flipped_faces`], those away from creases: no crease face of S1
-    /// (a face with a vertex on an edge whose faces' normals turn by more than
-    /// [`crate::quality::CREASE_ANGLE_DEG`]) and no vertex located in a crease face of
-    /// this surface. On the shared faces the creases are the pleated fills of the closed
-    /// eye and mouth holes, where "the key surface's normal" flips from face to face.
-    pub key_frame_flips_off_creases: usize,
-    /// The largest edge-connected group of [`Self::key_frame_flips_off_creases`].
-    pub key_frame_largest_flip_patch_off_creases: usize,
+    /// The same count with the earlier measure, the normals of the key faces the three
+    /// vertices were located in ([`crate::quality::flipped_at_vertices`]), for
+    /// comparison: it also counts faces along a crease of this surface whose vertices sit
+    /// on the crease.
+    pub key_frame_flipped_faces_at_vertices: usize,
+    /// The largest edge-connected group of [`Self::key_frame_flipped_faces_at_vertices`].
+    pub key_frame_largest_flip_patch_at_vertices: usize,
     /// Per stage.
     pub timings_ms: KeyTimings,
+}
+
+/// How S1's closed crease loops were carried onto one key surface's
+/// ([`crate::creases`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct CreaseSummary {
+    /// Closed crease loops of S1.
+    pub loops_s1: usize,
+    /// Closed crease loops of this surface.
+    pub loops: usize,
+    /// Pairs matched (each S1 loop and the loop of this surface nearest to it in the disk).
+    pub matched: usize,
+    /// Vertices of S1 placed exactly on this surface's loops (their whole move applied).
+    pub rim_vertices: usize,
+    /// The largest move (in the disk) of an S1 loop vertex onto this surface's loop.
+    pub largest_move: f64,
+    /// The smallest share of its move a loop vertex got: 1 when S1's disk, moved, folds
+    /// no face; the moves near faces that would fold are halved (up to
+    /// [`crate::creases::RIM_MOVE_HALVINGS`] rounds), and those vertices are located
+    /// where their partial move puts them; 0 when faces still folded then.
+    pub smallest_share: f64,
+    /// Faces of S1's disk the full move would fold.
+    pub folded_at_full_move: usize,
 }
 
 /// The report of a whole morph.

@@ -43,10 +43,42 @@ pub fn face_normal(positions: &[[f64; 3]], f: &[u32; 3]) -> [f64; 3] {
 }
 
 /// Faces of `frame` (with connectivity `faces`) whose normal points against the normal of
-/// the key surface (`key_positions`, `key_faces`) where their vertices lie (`locations`,
-/// one per vertex of the frame: the sum of the unit normals of the three located faces).
-/// Returns the flipped faces, ascending.
+/// the key surface (`key_positions`, `key_faces`) where the face lands: `landing[f]`, the
+/// key surface's face under face `f` (the location of the image of its centroid, through
+/// the same correspondence that carried its vertices). Returns the flipped faces,
+/// ascending.
+///
+/// This is the key surface's normal *at the face*: a frame face is compared with the key
+/// face its own interior lies on. At a crease of the key surface (where its normal jumps,
+/// e.g. the rims of the shared faces' hole fills, 127–178°) the faces holding a vertex
+/// disagree, so the normals at the vertices ([`flipped_at_vertices`]) do not say which
+/// side a face is on.
 pub fn flipped_against_key(
+    frame: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    key_positions: &[[f64; 3]],
+    key_faces: &[[u32; 3]],
+    landing: &[Location],
+) -> Vec<usize> {
+    faces
+        .iter()
+        .zip(landing)
+        .enumerate()
+        .filter(|(_, (f, at))| {
+            let reference = face_normal(key_positions, &key_faces[at.face as usize]);
+            !(dot(face_normal(frame, f), reference) > 0.0)
+        })
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// Faces of `frame` whose normal points against the sum of the unit normals of the key
+/// faces its three vertices were located in (`locations`, one per vertex): the measure
+/// of earlier versions, kept for comparison. A vertex on a crease of the key surface is
+/// located in any one of the faces around it, so a face along a crease can count as
+/// flipped although it lies on the key surface (on the shared faces, S1 morphed onto
+/// itself flags faces along the hole-fill rims); [`flipped_against_key`] does not.
+pub fn flipped_at_vertices(
     frame: &[[f64; 3]],
     faces: &[[u32; 3]],
     key_positions: &[[f64; 3]],
