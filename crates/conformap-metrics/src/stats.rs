@@ -96,7 +96,9 @@ mod tests {
     /// Blocks merged in order summarize what one stream does (empty blocks included).
     #[test]
     fn merged_blocks_match_one_stream() {
-        let xs: Vec<f64> = (0..1000).map(|i| ((i * 7919) % 1013) as f64 * 0.37 - 50.0).collect();
+        let xs: Vec<f64> = (0..1000)
+            .map(|i| ((i * 7919) % 1013) as f64 * 0.37 - 50.0)
+            .collect();
         let mut one = Running::default();
         xs.iter().for_each(|&x| one.push(x));
         let mut merged = Running::default();
