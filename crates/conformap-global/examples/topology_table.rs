@@ -92,6 +92,9 @@ fn main() -> Res {
                 s.energy_model,
                 centres.join(" ")
             );
+            if s.surface_genus > 0 {
+                println!("       stages (ms): {:?}", s.stages_ms);
+            }
         }
     }
     Ok(())

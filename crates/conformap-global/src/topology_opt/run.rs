@@ -88,6 +88,9 @@ pub struct TopologyStep {
     /// Newton iterations on the search's coarse level, over all its starts (0 without one).
     #[serde(default)]
     pub coarse_iterations: usize,
+    /// The global map's own timings by stage (all zero for a sphere or disk map).
+    #[serde(default)]
+    pub stages_ms: crate::GlobalTimings,
 }
 
 /// The layout the loop returns.
@@ -226,6 +229,7 @@ fn measure_global(
             .search
             .as_ref()
             .map_or(0, |s| s.coarse_iterations),
+        stages_ms: map.timings_ms,
     };
     Measured {
         image,
@@ -354,6 +358,7 @@ fn start(
         energy_model: String::new(),
         newton_iterations: 0,
         coarse_iterations: 0,
+        stages_ms: crate::GlobalTimings::default(),
     };
     let excluded = vec![false; mesh.num_vertices()];
     Ok((
@@ -394,6 +399,7 @@ fn start_disk(mesh: &TriMesh, shares: &[f64]) -> Result<(Measured, BestLayout), 
         energy_model: String::new(),
         newton_iterations: 0,
         coarse_iterations: 0,
+        stages_ms: crate::GlobalTimings::default(),
     };
     let excluded = vec![false; mesh.num_vertices()];
     Ok((
