@@ -1,4 +1,5 @@
-//! `conformap global --topology-opt` on spot (closed genus 0) and on a compact ellipsoid.
+//! `conformap global --topology-opt` on spot (closed genus 0), on a compact ellipsoid (the
+//! sphere map returned, drawn as `sphere` draws it) and on a disk with limbs (alligator).
 #![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
 mod support;
@@ -122,14 +123,99 @@ fn topology_opt_usage_is_checked() {
         "1.5",
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    // a disk is refused (exit 1) and nothing is written
-    let o = conformap(&[
-        "global",
-        s(&fixture("spothead.obj")),
-        "-o",
-        s(&out),
-        "--topology-opt",
-    ]);
+    // several components are still refused (exit 1) and nothing is written
+    let two = d.join("two.obj");
+    std::fs::write(
+        &two,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\n\
+         f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 5 7 6\nf 5 6 8\nf 6 7 8\nf 7 5 8\n",
+    )
+    .unwrap();
+    let o = conformap(&["global", s(&two), "-o", s(&out), "--topology-opt"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(!out.exists());
+}
+
+/// Writes `mesh` as a plain OBJ.
+fn write_obj(path: &Path, mesh: &conformap_mesh::TriMesh) {
+    let mut text = String::new();
+    for p in mesh.positions() {
+        text += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    for f in mesh.faces() {
+        text += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn a_returned_sphere_map_is_drawn_as_sphere_draws_it() {
+    let d = tmpdir("global-topology-sphere-png");
+    let mesh = d.join("ellipsoid.obj");
+    write_obj(&mesh, &conformap_global::doc_support::octahedron_sphere(3));
+    let (a, b) = (d.join("a"), d.join("b"));
+    let o = conformap(&[
+        "sphere",
+        s(&mesh),
+        "-o",
+        s(&d.join("a.obj")),
+        "--mobius",
+        "uniform",
+        "--png",
+        s(&a),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rep = d.join("b.json");
+    let o = conformap(&[
+        "global",
+        s(&mesh),
+        "-o",
+        s(&d.join("b.obj")),
+        "--topology-opt",
+        "--report",
+        s(&rep),
+        "--png",
+        s(&b),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&rep)["topology_opt"]["returned"], "sphere");
+    // the same uniform-Möbius sphere map, so the same two pictures, byte for byte (before:
+    // the equirectangular texture drawn as a flat map)
+    for suffix in ["_surface.png", "_map.png"] {
+        let read = |p: &Path| std::fs::read(format!("{}{suffix}", p.display())).unwrap();
+        let (pa, pb) = (read(&a), read(&b));
+        let differing = pa.iter().zip(&pb).filter(|(x, y)| x != y).count();
+        assert_eq!((pa.len(), differing), (pb.len(), 0), "{suffix}");
+    }
+}
+
+#[test]
+fn a_disk_with_limbs_is_slit_and_laid_out_more_uniformly_than_its_disk_map() {
+    let d = tmpdir("global-topology-disk");
+    let (out, rep) = (d.join("alligator.obj"), d.join("alligator.json"));
+    let o = conformap(&[
+        "global",
+        s(&fixture("alligator.obj")),
+        "-o",
+        s(&out),
+        "--report",
+        s(&rep),
+        "--topology-opt",
+        "--max-slits",
+        "9",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = json(&rep);
+    let t = &r["topology_opt"];
+    let steps = t["steps"].as_array().unwrap();
+    assert_eq!(steps[0]["slits"], 0);
+    let start = t["start_energy"].as_f64().unwrap();
+    // the uniform-Möbius disk map's energy, as `disk` + `mobius --objective uniform` give it
+    // (measured 1.1631e-3; 9 slits 0.666× of it)
+    assert!((start - 1.1631e-3).abs() < 1e-7, "{start:e}");
+    let ratio = t["ratio_to_start"].as_f64().unwrap();
+    assert!(ratio < 0.7, "{ratio}");
+    assert_eq!(t["returned"], "slits", "{t}");
+    assert_eq!(r["metrics"]["folds_outside_zeros"], 0);
+    assert!(out.exists());
 }

@@ -23,6 +23,10 @@ pub enum GlobalError {
     /// badly conditioned (extremely thin or strongly non-Delaunay triangles).
     #[error("linear algebra failed: {0}")]
     Operator(#[from] OperatorError),
+    /// The starting disk map of the topological optimization of a disk failed (see the
+    /// inner error; `conformap disk` on the same mesh reports the same).
+    #[error("the starting disk map failed: {0}")]
+    Disk(#[from] conformap_disk::DiskError),
     /// A mesh built by surgery (the double covering) failed validation.
     #[error("mesh surgery failed: {0}")]
     Mesh(#[from] MeshError),

@@ -22,9 +22,10 @@
 //!   [`double_cover_disk_map`] — a second route to the disk map, independent of CEM.
 //! - Energies on their own: [`sphere_uniformity_energy`], [`disk_uniformity_energy`],
 //!   [`sphere_region_share`], [`disk_region_share`], [`region_mask`].
-//! - **Topological optimization** (§3.5): [`topology_opt`] slits the surface at the
-//!   extreme points of its map and maps the slit surface by its most uniform holomorphic
-//!   form, greedily, returning the best layout seen ([`TopologyOpt`], [`TopologyOptOptions`]).
+//! - **Topological optimization** (§3.5): [`topology_opt`] slits the surface (closed
+//!   genus 0, a disk, or higher genus) at the extreme points of its map and maps the slit
+//!   surface by its most uniform holomorphic form, greedily, returning the best layout seen
+//!   ([`TopologyOpt`], [`TopologyOptOptions`]).
 //! - [`GlobalError`]: the one error type.
 //!
 //! # Example

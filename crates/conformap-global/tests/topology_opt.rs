@@ -66,6 +66,56 @@ fn genus_two_never_returns_worse_than_its_own_form() {
     assert!(best <= r.steps[0].energy);
 }
 
+#[test]
+fn a_disk_with_limbs_is_slit_and_beats_its_disk_map() {
+    let mesh = fixture("alligator.obj");
+    let r = topology_opt(&mesh, &TopologyOptOptions::DEFAULT.with_max_slits(9)).expect("runs");
+    // measured (issue 23): the uniform-Möbius disk map 1.1631e-3; 2 slits 7.36×, 4 slits
+    // 1.44×, 6 slits 0.997×, 9 slits 0.666× (16 slits 0.345×, 32 slits 0.116×)
+    assert!(
+        (r.steps[0].energy - 1.1631e-3).abs() < 1e-7,
+        "{}",
+        r.steps[0].energy
+    );
+    assert_eq!(r.steps[0].surface_genus, 0);
+    assert_eq!(r.steps[1].slits, 2);
+    assert_eq!(r.steps[1].surface_genus, 2); // a disk with k slits: its double covering has genus k
+    assert!(r.steps[1].ratio_to_start > 3.0);
+    let best = &r.steps[r.best_step];
+    assert_eq!(best.slits, 9);
+    assert!(best.ratio_to_start < 0.7, "{}", best.ratio_to_start);
+    assert_eq!(best.folds_outside_zeros, 0);
+    assert!(best.area_distortion_log.sd < 0.3 * r.steps[0].area_distortion_log.sd);
+    match &r.best {
+        BestLayout::Global {
+            slit: Some(slit), ..
+        } => assert_eq!(slit.slits.len(), 9),
+        other => panic!("expected a slit layout, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_disk_where_slits_do_not_pay_keeps_its_disk_map() {
+    // at most 4 slits: the 2- and 4-slit layouts of alligator (7.4× and 1.4×) both lose
+    let mesh = fixture("alligator.obj");
+    let r = topology_opt(
+        &mesh,
+        &TopologyOptOptions::DEFAULT
+            .with_max_slits(4)
+            .with_patience(2),
+    )
+    .expect("runs");
+    assert_eq!(r.best_step, 0);
+    assert!(r.steps.len() >= 2 && r.steps[1..].iter().all(|s| s.energy > r.steps[0].energy));
+    match &r.best {
+        BestLayout::Disk(map) => {
+            assert_eq!(map.len(), mesh.num_vertices());
+            assert!(map.iter().all(|z| z.norm() <= 1.0 + 1e-9));
+        }
+        other => panic!("expected the disk map, got {other:?}"),
+    }
+}
+
 fn real(name: &str, max_slits: usize) -> Option<conformap_global::TopologyOpt> {
     let mesh = common::read(name)?;
     Some(

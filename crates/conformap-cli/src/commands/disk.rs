@@ -231,6 +231,7 @@ impl DiskArgs {
             }),
         );
         Ok(Solved {
+            picture_domain: None,
             method: s.method.clone(),
             uv: disk_uv(&result.map).into(),
             flat: (planar_points(&result.map), None),
@@ -306,6 +307,7 @@ impl DiskArgs {
         );
         let st = &r.sphere.timings_ms;
         Ok(Solved {
+            picture_domain: None,
             method: "double-cover".to_string(),
             uv: disk_uv(&map).into(),
             flat: (planar_points(&map), None),

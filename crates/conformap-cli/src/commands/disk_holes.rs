@@ -77,6 +77,7 @@ pub fn solve(args: &DiskArgs, input: &Input) -> Result<Solved, Failure> {
     );
     let tm = &r.timings_ms;
     Ok(Solved {
+        picture_domain: None,
         method: "koebe".to_string(),
         uv: disk_uv(&result.map).into(),
         flat: (planar_points(&result.map), None),

@@ -94,7 +94,8 @@ pub struct GlobalArgs {
     /// Topological optimization (Jin et al. §3.5): slit the surface at the extreme points
     /// of its map (limb tips) and map the slit surface by its most uniform form, greedily;
     /// returns the most uniform layout seen, the starting map included. Also takes closed
-    /// genus-0 meshes (the starting map is then the uniform-Möbius sphere map).
+    /// genus-0 meshes (the starting map is then the uniform-Möbius sphere map) and disks
+    /// (the uniform-Möbius disk map).
     #[arg(long)]
     pub topology_opt: bool,
     /// Most slits of `--topology-opt`. Default: the library's (16).
@@ -295,6 +296,7 @@ pub(crate) fn map_solved(
             .with("harmonic_residual", map.harmonic_residual);
         let tm = &map.timings_ms;
         Ok(Solved {
+            picture_domain: None,
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
             summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros),
             strict_violation: (folds_outside_zeros > 0).then(|| {

@@ -10,7 +10,11 @@
 //!   `--flat` gets the slit surface's fundamental domain.
 //! - the starting sphere map (closed genus 0, when no slit paid): written as `sphere`
 //!   writes it — one `vt` per vertex, the equirectangular projection of the sphere point;
-//!   `--flat` the unit-sphere points.
+//!   `--flat` the unit-sphere points; `--png` draws it as `sphere --png` does (the
+//!   checkerboard through the sphere map, the sphere coloured by angle distortion), not
+//!   the equirectangular texture as a flat map.
+//! - the starting disk map (a disk, when no slit paid): written as `disk` writes it — one
+//!   `vt = ((u+1)/2, (v+1)/2)` per vertex; `--flat` the disk points.
 //!
 //! The report's `topology_opt` section lists every step (slits added with their centre and
 //! vertex path, genus of the double covering, energy and its ratio to the starting map's,
@@ -19,11 +23,12 @@
 use conformap_global::{
     equirectangular_uv, sphere_metrics, topology_opt, BestLayout, TopologyOpt, TopologyOptOptions,
 };
+use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::commands::global::{map_solved, FormObjective, GlobalArgs};
 use crate::failure::Failure;
-use crate::pipeline::{Input, Solved};
+use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
 
 /// The flags `--topology-opt` does not combine with (exit 2).
@@ -84,6 +89,7 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
             (solved, what)
         }
         BestLayout::Sphere(points) => (sphere_solved(input, points, &r)?, "sphere"),
+        BestLayout::Disk(map) => (disk_solved(input, map, &r)?, "disk"),
         _ => {
             return Err(input.fail(Failure::Numerical(
                 "unknown layout kind returned by the topological optimization".to_owned(),
@@ -99,6 +105,7 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
         json!({
             "returned": returned,
             "returned_is": "sphere: the starting uniform-Möbius sphere map (no slit paid); \
+                            disk: the starting uniform-Möbius disk map (no slit paid); \
                             input: the input's own most uniform form; slits: the global map \
                             of the input cut along `slits`",
             "best_step": r.best_step,
@@ -155,6 +162,7 @@ fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<
     let strict_violation =
         (m.flipped_faces > 0).then(|| format!("{} faces inverted on the sphere", m.flipped_faces));
     Ok(Solved {
+        picture_domain: Some(PictureDomain::Sphere),
         method: "sphere+mobius-uniform".to_owned(),
         uv: points
             .iter()
@@ -166,6 +174,52 @@ fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<
         param: None,
         sections: serde_json::Map::new(),
         metrics: MetricsSection::sphere(m),
+        timings: StageTimings {
+            metrics: metrics_ms,
+            ..StageTimings::default()
+        },
+        strict_violation,
+        summary,
+    })
+}
+
+/// The starting disk map (the default disk map moved by its uniform-Möbius automorphism),
+/// as `disk` writes a map.
+fn disk_solved(
+    input: &Input,
+    map: &[num_complex::Complex64],
+    r: &TopologyOpt,
+) -> Result<Solved, Failure> {
+    let mesh = &input.mesh;
+    let t = std::time::Instant::now();
+    let base = planar_map_metrics(mesh, map, &MetricsOptions::default())?;
+    let metrics_ms = crate::report::ms_since(t);
+    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
+    let solver = SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
+        "energy_history_is",
+        "uniformity energy of each step (step 0: the disk map)",
+    );
+    let summary = format!(
+        "{} vertices, {} faces; uniform-Möbius disk map (mean angle distortion {:.3}°, \
+         flipped faces {}, uniformity {:.3e})",
+        mesh.num_vertices(),
+        mesh.num_faces(),
+        base.angle_distortion_deg.mean,
+        base.flipped_faces,
+        r.steps[0].energy
+    );
+    let strict_violation =
+        (base.flipped_faces > 0).then(|| format!("{} faces flipped", base.flipped_faces));
+    let metrics = MetricsSection::planar(base).with("uniformity_energy", r.steps[0].energy);
+    Ok(Solved {
+        picture_domain: None,
+        method: "disk+mobius-uniform".to_owned(),
+        uv: disk_uv(map).into(),
+        flat: (planar_points(map), None),
+        solver,
+        param: None,
+        sections: serde_json::Map::new(),
+        metrics,
         timings: StageTimings {
             metrics: metrics_ms,
             ..StageTimings::default()

@@ -213,6 +213,7 @@ impl MobiusArgs {
         .with("mobius", &mobius);
         let summary = summary(self, &mobius);
         Ok(Solved {
+            picture_domain: None,
             method: format!("newton-{}", mobius.objective),
             uv: moved.uv.into(),
             flat: (moved.flat, None),

@@ -129,6 +129,7 @@ impl MapCommand for SphereArgs {
         let summary = summary(mesh, s.corrections, mobius.is_some(), &after);
         let strict_violation = strict_violation(&after, converged, s.residual);
         Ok(Solved {
+            picture_domain: None,
             method,
             uv: points
                 .iter()

@@ -96,6 +96,10 @@ pub struct Solved {
     /// The summary line (without the mesh path and the total time, which the pipeline
     /// adds).
     pub summary: String,
+    /// Where this result lands for the `--png` pictures when it differs from the
+    /// command's [`MapCommand::picture_domain`] (`global --topology-opt` returning the
+    /// starting sphere map: drawn as `sphere` draws it); `None`: the command's.
+    pub picture_domain: Option<PictureDomain>,
 }
 
 /// The texture coordinates a command writes to `-o`.
@@ -179,7 +183,8 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
     }
     if let Some(prefix) = &output.png {
         context::stage(format!("{}: drawing the pictures", mesh_path.display()));
-        pictures::stage_pictures(&mut staged, prefix, mesh, &solved, cmd.picture_domain())?;
+        let domain = solved.picture_domain.unwrap_or(cmd.picture_domain());
+        pictures::stage_pictures(&mut staged, prefix, mesh, &solved, domain)?;
         context::stage(format!("{}: writing", mesh_path.display()));
     }
     if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {

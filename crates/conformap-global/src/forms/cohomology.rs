@@ -48,25 +48,38 @@ pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>,
             }
         }
     }
-    let mut forms = Vec::with_capacity(basis.generators.len());
-    let mut root_residual = 0.0f64;
-    for gen in &basis.generators {
-        let mut w = vec![0.0; edges.len()];
-        w[gen.edge as usize] = 1.0;
-        for &f in order.iter().skip(1).rev() {
-            let ph = parent_h[f] as usize;
-            let others: f64 = (0..3)
-                .map(|k| 3 * f + k)
-                .filter(|&h| h != ph)
-                .map(|h| edges.on_halfedge(&w, h))
-                .sum();
-            // sign(ph) · w[e] + others = 0
-            w[edges.edge_of[ph] as usize] = -others * edges.sign(ph);
-        }
-        let root: f64 = (0..3).map(|k| edges.on_halfedge(&w, k)).sum();
-        root_residual = root_residual.max(root.abs());
-        forms.push(w);
+    // all forms at once, edge-major (`w[e n + k]`): one pass over the dual tree
+    let n = basis.generators.len();
+    let mut w = vec![0.0; edges.len() * n];
+    for (k, gen) in basis.generators.iter().enumerate() {
+        w[gen.edge as usize * n + k] = 1.0;
     }
+    let mut others = vec![0.0; n];
+    for &f in order.iter().skip(1).rev() {
+        let ph = parent_h[f] as usize;
+        others.fill(0.0);
+        for h in (3 * f..3 * f + 3).filter(|&h| h != ph) {
+            let (e, sign) = (edges.edge_of[h] as usize, edges.sign(h));
+            for (o, x) in others.iter_mut().zip(&w[e * n..(e + 1) * n]) {
+                *o += sign * x;
+            }
+        }
+        // sign(ph) · w[e] + others = 0
+        let (e, sign) = (edges.edge_of[ph] as usize, edges.sign(ph));
+        for (x, o) in w[e * n..(e + 1) * n].iter_mut().zip(&others) {
+            *x = -o * sign;
+        }
+    }
+    let mut root_residual = 0.0f64;
+    for k in 0..n {
+        let root: f64 = (0..3)
+            .map(|h| edges.sign(h) * w[edges.edge_of[h] as usize * n + k])
+            .sum();
+        root_residual = root_residual.max(root.abs());
+    }
+    let forms = (0..n)
+        .map(|k| (0..edges.len()).map(|e| w[e * n + k]).collect())
+        .collect();
     (forms, root_residual)
 }
 
@@ -85,7 +98,9 @@ pub fn edge_weights(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<f64> {
 }
 
 /// `∫ α ∧ *β = Σ_e w_e α(e) β(e)` for closed forms: the L² inner product (the cotangent
-/// formula for the Dirichlet energy of the face-wise linear primitives).
+/// formula for the Dirichlet energy of the face-wise linear primitives). The pair-by-pair
+/// reference of `conjugate::wedge_and_gram` (tests only).
+#[cfg(test)]
 pub fn inner_product(weights: &[f64], a: &[f64], b: &[f64]) -> f64 {
     weights
         .iter()
@@ -96,7 +111,9 @@ pub fn inner_product(weights: &[f64], a: &[f64], b: &[f64]) -> f64 {
 
 /// `∫ α ∧ β` for closed forms over the faces in `faces`: on face `(v0, v1, v2)` with
 /// `a_k = α(v0 → v_k)`, `b_k = β(v0 → v_k)` it is `½(a_1 b_2 − a_2 b_1)`, the signed area of
-/// the face's image under the primitive `(∫α, ∫β)`.
+/// the face's image under the primitive `(∫α, ∫β)`. The pair-by-pair reference of
+/// `conjugate::wedge_and_gram` (tests only).
+#[cfg(test)]
 pub fn wedge(basis: &HomologyBasis, faces: std::ops::Range<usize>, a: &[f64], b: &[f64]) -> f64 {
     let e = &basis.edges;
     faces

@@ -12,9 +12,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::forms::cohomology::{inner_product, wedge, Cochain};
+use crate::forms::cohomology::Cochain;
 use crate::forms::dense::{frobenius, inverse, mat_mul, symmetric_function, transpose};
+use crate::forms::periods::cochain_matrix;
 use conformap_mesh::HomologyBasis;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
 
 use crate::GlobalError;
 
@@ -76,6 +79,58 @@ impl Conjugation {
     }
 }
 
+/// `W_kj = ∫ ω_k ∧ ω_j` over the first `faces` faces and `H_kj = ∫ ω_k ∧ *ω_j` (row-major),
+/// as matrix products over the faces and edges (the face sums of `cohomology::wedge` and
+/// `cohomology::inner_product` for all pairs at once): with `A₁[f][k] = ω_k(v0 → v1)`,
+/// `A₂[f][k] = ω_k(v0 → v2)`, `W = ½ (A₁ᵀA₂ − A₂ᵀA₁)`; `H = Hᵀ diag(w) H` with the forms as
+/// the columns of `H`. Exactly antisymmetric and symmetric (the upper triangles mirrored).
+pub fn wedge_and_gram(
+    basis: &HomologyBasis,
+    weights: &[f64],
+    h: &[Cochain],
+    faces: usize,
+) -> (Vec<f64>, Vec<f64>) {
+    let n = h.len();
+    let e = &basis.edges;
+    let hm = cochain_matrix(h);
+    let on = |he: usize, k: usize| e.sign(he) * hm[(e.edge_of[he] as usize, k)];
+    let a1 = Mat::<f64>::from_fn(faces, n, |f, k| on(3 * f, k));
+    let a2 = Mat::<f64>::from_fn(faces, n, |f, k| -on(3 * f + 2, k));
+    let mut x = Mat::<f64>::zeros(n, n);
+    matmul(
+        x.as_mut(),
+        Accum::Replace,
+        a1.transpose(),
+        a2.as_ref(),
+        1.0,
+        Par::rayon(0),
+    );
+    let weighted = Mat::<f64>::from_fn(hm.nrows(), n, |r, k| weights[r] * hm[(r, k)]);
+    let mut gm = Mat::<f64>::zeros(n, n);
+    matmul(
+        gm.as_mut(),
+        Accum::Replace,
+        weighted.transpose(),
+        hm.as_ref(),
+        1.0,
+        Par::rayon(0),
+    );
+    let mut w = vec![0.0; n * n];
+    let mut g = vec![0.0; n * n];
+    for i in 0..n {
+        for j in i..n {
+            if j > i {
+                let v = 0.5 * (x[(i, j)] - x[(j, i)]);
+                w[i * n + j] = v;
+                w[j * n + i] = -v;
+            }
+            g[i * n + j] = gm[(i, j)];
+            g[j * n + i] = gm[(i, j)];
+        }
+    }
+    (w, g)
+}
+
 /// Solves the wedge-product system for the harmonic forms `h` (cotangent `weights` per
 /// edge) and projects it onto the nearest complex structure.
 ///
@@ -88,22 +143,7 @@ pub fn conjugation(
     faces: usize,
 ) -> Result<Conjugation, GlobalError> {
     let n = h.len();
-    let mut w = vec![0.0; n * n];
-    let mut g = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            if j > i {
-                let x = wedge(basis, 0..faces, &h[i], &h[j]);
-                w[i * n + j] = x;
-                w[j * n + i] = -x;
-            }
-            if j >= i {
-                let x = inner_product(weights, &h[i], &h[j]);
-                g[i * n + j] = x;
-                g[j * n + i] = x;
-            }
-        }
-    }
+    let (w, g) = wedge_and_gram(basis, weights, h, faces);
     let w_inv = inverse(&w, n).ok_or(GlobalError::DegenerateFormBasis {
         reason: "the wedge matrix of the harmonic basis is singular",
     })?;

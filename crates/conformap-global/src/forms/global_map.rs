@@ -16,7 +16,8 @@ use crate::forms::layout::integrate;
 use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{
-    bilinear_residual, holomorphic_basis, period_matrix, reduce_modulus, ComplexCochain,
+    bilinear_residual, harmonic_periods, holomorphic_basis, period_matrix, reduce_modulus,
+    ComplexCochain,
 };
 use crate::forms::quality::{layout_metrics, LayoutMetrics};
 use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch, Zero, ZeroReport};
@@ -34,7 +35,8 @@ pub struct GlobalTimings {
     /// Assembling the cotangent Laplacian and its reduced block.
     pub assemble: f64,
     /// Symbolic analysis and numeric factorization of the reduced Laplacian (the
-    /// yardstick: one factorization).
+    /// yardstick: one factorization; on a double covering the two half-size ones, see
+    /// `harmonic.rs`).
     pub factor: f64,
     /// The blocked solve of the harmonic projection.
     pub solve: f64,
@@ -133,7 +135,8 @@ pub struct GlobalMap {
     pub metrics: LayoutMetrics,
     /// The objective that chose the form and what it measured.
     pub objective: ObjectiveReport,
-    /// Dimension and nnz of the factored Laplacian block.
+    /// Dimension of the factored Laplacian block (a double covering: the sum of its two
+    /// half-size blocks).
     pub factor_dim: usize,
     /// Non-zeros of the Cholesky factor.
     pub factor_nnz: usize,
@@ -230,13 +233,13 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         }
     };
     let t = Instant::now();
-    let (surface, input_vertices, input_faces, split_edges) = if boundaries > 0 {
+    let (surface, input_vertices, input_faces, split_edges, mirror) = if boundaries > 0 {
         let dc = double_cover_surface(mesh)?;
         let iv = dc.split_vertices;
         let faces = dc.mesh.num_faces() / 2;
-        (dc.mesh, iv, faces, dc.split_edges)
+        (dc.mesh, iv, faces, dc.split_edges, Some(dc.mirror))
     } else {
-        (mesh.clone(), mesh.num_vertices(), mesh.num_faces(), 0)
+        (mesh.clone(), mesh.num_vertices(), mesh.num_faces(), 0, None)
     };
     timings.double_cover = ms(t);
     // The Laplacian depends on the surface alone: it is assembled and factored while the
@@ -256,7 +259,12 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
             let weights = edge_weights(&surface, &basis);
             Ok((basis, cut, closed, closedness_residual, weights, ms(t)))
         },
-        || HarmonicFactor::new(&surface, pinned, &options.cholesky),
+        || match &mirror {
+            // a double covering: two half-size factorizations (Neumann and Dirichlet on
+            // one copy, see `harmonic.rs`)
+            Some(m) => HarmonicFactor::mirrored(&surface, m, input_vertices, &options.cholesky),
+            None => HarmonicFactor::new(&surface, pinned, &options.cholesky),
+        },
     );
     let (basis, cut, closed, closedness_residual, weights, topology_ms) = topology?;
     timings.topology = topology_ms;
@@ -271,7 +279,7 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         }
     }
     let factor = match factor? {
-        f if basis.root == pinned => f,
+        f if f.fits_root(basis.root) => f,
         _ => HarmonicFactor::new(&surface, basis.root, &options.cholesky)?,
     };
     let harmonic = factor.project(&surface, &basis, &weights, &closed)?;
@@ -281,9 +289,9 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
     let t = Instant::now();
     let conj = conjugation(&basis, &weights, &harmonic.forms, surface.num_faces())?;
     let forms = holomorphic_basis(&harmonic.forms, conj.matrix(options.conjugate));
-    let periods = period_matrix(&basis, &forms);
-    let plain = holomorphic_basis(&harmonic.forms, &conj.gu_yau);
-    let plain_periods = period_matrix(&basis, &plain);
+    let ph = harmonic_periods(&basis, &harmonic.forms);
+    let periods = period_matrix(&ph, conj.matrix(options.conjugate), n);
+    let plain_periods = period_matrix(&ph, &conj.gu_yau, n);
     let bilinear_residual = bilinear_residual(&periods, &conj.wedge, n);
     let bilinear_residual_gu_yau =
         crate::forms::periods::bilinear_residual(&plain_periods, &conj.wedge, n);

@@ -1,7 +1,8 @@
 //! Harmonic projection of the cohomology basis: `h_i = ω_i + d f_i` with `δ h_i = 0`, i.e.
 //! `L f_i = div ω_i` for the cotangent Laplacian `L`, one vertex pinned. One symbolic
 //! analysis and one numeric factorization serve all `2g` right-hand sides (one blocked
-//! solve).
+//! solve); on a symmetric double covering, two factorizations of half the size (the
+//! Neumann and Dirichlet problems of one copy, [`HarmonicFactor::mirrored`]).
 
 use std::time::Instant;
 
@@ -44,11 +45,39 @@ fn divergence(mesh: &TriMesh, basis: &HomologyBasis, weights: &[f64], w: &[f64])
 /// The reduced cotangent Laplacian of a closed surface (one vertex pinned), assembled and
 /// factored once. It depends on the surface alone, not on its homology, so
 /// [`crate::global_map`] factors it while the tree–cotree and the cut run on the other core.
+///
+/// On a symmetric double covering ([`HarmonicFactor::mirrored`]) the Laplacian `L`
+/// commutes with the mirror, so with the first copy's interior `I`, the boundary `B` and
+/// `f = (f_I, f_B, f_I')` the system `L f = d` splits into the symmetric part
+/// `s = (f_I + f_I')/2`, `f_B`, which solves the Neumann problem of one copy
+/// `L₁ (s, f_B) = ((d_I + d_I')/2, d_B/2)` (`L₁` the copy's own cotangent Laplacian: `L`'s
+/// first-copy block with the boundary–boundary entries halved, a boundary edge having a
+/// face in each copy), and the antisymmetric part `a = (f_I − f_I')/2`, which solves the
+/// Dirichlet problem `L_II a = (d_I − d_I')/2`: two factorizations of one copy's size
+/// instead of one of twice the size (the fill grows faster than the dimension: measured in
+/// docs/benchmarks.md, issue 23). The potentials agree with the whole solve up to a
+/// constant, which no form sees.
 pub struct HarmonicFactor {
-    part: Partition,
-    chol: Cholesky,
-    /// Milliseconds assembling `L` and its reduced block.
+    kind: Kind,
+    /// Milliseconds assembling `L` and its reduced block(s).
     pub assemble_ms: f64,
+}
+
+enum Kind {
+    /// One factorization of the whole surface, `pinned` fixed (boxed like the other).
+    Whole(Box<(Partition, Cholesky, u32)>),
+    /// The Neumann and Dirichlet halves of a double covering (boxed: two factorizations).
+    Mirrored(Box<MirroredHalves>),
+}
+
+/// The two half-size factorizations of [`Kind::Mirrored`].
+struct MirroredHalves {
+    mirror: Vec<u32>,
+    copy_vertices: usize,
+    neumann: Partition,
+    dirichlet: Partition,
+    chol_n: Cholesky,
+    chol_d: Cholesky,
 }
 
 impl HarmonicFactor {
@@ -69,15 +98,159 @@ impl HarmonicFactor {
         let assemble_ms = ms(t0);
         let chol = Cholesky::factor_with(&blocks.ii, options)?;
         Ok(Self {
-            part,
-            chol,
+            kind: Kind::Whole(Box::new((part, chol, pinned))),
             assemble_ms,
         })
     }
 
+    /// The two half-size factorizations of a symmetric double covering `mesh` (see the type's
+    /// docs): `mirror` gives each vertex's mirror image (boundary vertices are their own),
+    /// the first `copy_vertices` vertices are the first copy and the boundary.
+    ///
+    /// # Errors
+    /// As [`HarmonicFactor::new`].
+    pub fn mirrored(
+        mesh: &TriMesh,
+        mirror: &[u32],
+        copy_vertices: usize,
+        options: &CholeskyOptions,
+    ) -> Result<Self, GlobalError> {
+        let t0 = Instant::now();
+        let n1 = copy_vertices;
+        let on_boundary = |v: usize| mirror[v] as usize == v;
+        let l = cotan_laplacian(mesh);
+        let mut tri = sprs::TriMat::new((n1, n1));
+        for (j, col) in l.outer_iterator().enumerate().take(n1) {
+            for (i, &x) in col.iter().filter(|(i, _)| *i < n1) {
+                let halve = on_boundary(i) && on_boundary(j);
+                tri.add_triplet(i, j, if halve { 0.5 * x } else { x });
+            }
+        }
+        let l1: sprs::CsMat<f64> = tri.to_csc();
+        let boundary: Vec<u32> = (0..n1 as u32)
+            .filter(|&v| on_boundary(v as usize))
+            .collect();
+        // Neumann: one boundary vertex pinned (the potentials are defined up to a constant)
+        let neumann = Partition::new(n1, &boundary[..1.min(boundary.len())]);
+        let dirichlet = Partition::new(n1, &boundary);
+        let (bn, bd) = (
+            LaplacianBlocks::new(&l1, &neumann),
+            LaplacianBlocks::new(&l1, &dirichlet),
+        );
+        let assemble_ms = ms(t0);
+        let chol_n = Cholesky::factor_with(&bn.ii, options)?;
+        let chol_d = Cholesky::factor_with(&bd.ii, options)?;
+        Ok(Self {
+            kind: Kind::Mirrored(Box::new(MirroredHalves {
+                mirror: mirror.to_vec(),
+                copy_vertices,
+                neumann,
+                dirichlet,
+                chol_n,
+                chol_d,
+            })),
+            assemble_ms,
+        })
+    }
+
+    /// Whether [`Self::project`] may take a homology basis rooted at `root` (the whole
+    /// factorization pins the root; the mirrored one any vertex).
+    pub fn fits_root(&self, root: u32) -> bool {
+        match &self.kind {
+            Kind::Whole(w) => w.2 == root,
+            Kind::Mirrored(_) => true,
+        }
+    }
+
+    /// The factorizations' sizes and timings (the mirrored halves added up).
+    pub fn stats(&self) -> FactorStats {
+        match &self.kind {
+            Kind::Whole(w) => w.1.stats().clone(),
+            Kind::Mirrored(h) => {
+                let (chol_n, chol_d) = (&h.chol_n, &h.chol_d);
+                let (a, b) = (chol_n.stats(), chol_d.stats());
+                FactorStats {
+                    n: a.n + b.n,
+                    nnz_matrix: a.nnz_matrix + b.nnz_matrix,
+                    nnz_factor: a.nnz_factor + b.nnz_factor,
+                    supernodal: a.supernodal || b.supernodal,
+                    analyse_ms: a.analyse_ms + b.analyse_ms,
+                    factor_ms: a.factor_ms + b.factor_ms,
+                    ordering: a.ordering,
+                }
+            }
+        }
+    }
+
+    /// The potentials `f_i` with `L f_i = d_i` (one pinned value, or a constant, free).
+    fn potentials(&self, divs: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let k = divs.len();
+        match &self.kind {
+            Kind::Whole(w) => {
+                let (part, chol, _) = &**w;
+                let ni = part.interior.len();
+                let mut rhs = Vec::with_capacity(ni * k);
+                for d in divs {
+                    rhs.extend(part.interior.iter().map(|&v| d[v as usize]));
+                }
+                chol.solve_in_place(&mut rhs, k);
+                (0..k)
+                    .map(|i| part.assemble(&rhs[i * ni..(i + 1) * ni], &[0.0]))
+                    .collect()
+            }
+            Kind::Mirrored(h) => {
+                let MirroredHalves {
+                    mirror,
+                    copy_vertices,
+                    neumann,
+                    dirichlet,
+                    chol_n,
+                    chol_d,
+                } = &**h;
+                let on_boundary = |v: usize| mirror[v] as usize == v;
+                let (nn, nd) = (neumann.interior.len(), dirichlet.interior.len());
+                let (mut rn, mut rd) = (Vec::with_capacity(nn * k), Vec::with_capacity(nd * k));
+                for d in divs {
+                    rn.extend(neumann.interior.iter().map(|&v| {
+                        let (v, w) = (v as usize, mirror[v as usize] as usize);
+                        if on_boundary(v) {
+                            0.5 * d[v]
+                        } else {
+                            0.5 * (d[v] + d[w])
+                        }
+                    }));
+                    rd.extend(dirichlet.interior.iter().map(|&v| {
+                        let (v, w) = (v as usize, mirror[v as usize] as usize);
+                        0.5 * (d[v] - d[w])
+                    }));
+                }
+                chol_n.solve_in_place(&mut rn, k);
+                chol_d.solve_in_place(&mut rd, k);
+                let pinned = vec![0.0; neumann.boundary.len()];
+                let fixed = vec![0.0; dirichlet.boundary.len()];
+                (0..k)
+                    .map(|i| {
+                        let sym = neumann.assemble(&rn[i * nn..(i + 1) * nn], &pinned);
+                        let anti = dirichlet.assemble(&rd[i * nd..(i + 1) * nd], &fixed);
+                        let mut f = vec![0.0; mirror.len()];
+                        for v in 0..*copy_vertices {
+                            f[v] = sym[v] + anti[v];
+                            let w = mirror[v] as usize;
+                            if w != v {
+                                f[w] = sym[v] - anti[v];
+                            }
+                        }
+                        f
+                    })
+                    .collect()
+            }
+        }
+    }
+
     /// Projects each closed form of `closed` onto its harmonic representative (same
     /// cohomology class: `h − ω = d f` is exact, so every period is kept). `basis` must be a
-    /// homology basis of the factored mesh rooted at the pinned vertex.
+    /// homology basis of the factored mesh, rooted at the pinned vertex for a whole
+    /// factorization ([`Self::fits_root`]).
     ///
     /// # Errors
     /// [`GlobalError::NonFinite`] if a solve produces a non-finite value.
@@ -89,22 +262,14 @@ impl HarmonicFactor {
         closed: &[Cochain],
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
-        let part = &self.part;
-        let ni = part.interior.len();
-        let k = closed.len();
         let divs: Vec<Vec<f64>> = closed
             .iter()
             .map(|w| divergence(mesh, basis, weights, w))
             .collect();
-        let mut rhs = Vec::with_capacity(ni * k);
-        for d in &divs {
-            rhs.extend(part.interior.iter().map(|&v| d[v as usize]));
-        }
-        self.chol.solve_in_place(&mut rhs, k);
-        let mut forms = Vec::with_capacity(k);
+        let potentials = self.potentials(&divs);
+        let mut forms = Vec::with_capacity(closed.len());
         let mut codifferential_residual = 0.0f64;
-        for (i, w) in closed.iter().enumerate() {
-            let f = part.assemble(&rhs[i * ni..(i + 1) * ni], &[0.0]);
+        for (i, (w, f)) in closed.iter().zip(&potentials).enumerate() {
             if let Some(v) = f.iter().position(|x| !x.is_finite()) {
                 return Err(GlobalError::NonFinite {
                     vertex: v,
@@ -132,7 +297,7 @@ impl HarmonicFactor {
         Ok(HarmonicSolve {
             forms,
             codifferential_residual,
-            factor: self.chol.stats().clone(),
+            factor: self.stats(),
             assemble_ms: self.assemble_ms,
             solve_ms: ms(t1),
         })

@@ -5,7 +5,8 @@
 //! - `dense.rs`: small dense linear algebra (inverse, Jacobi eigen, matrix functions).
 //! - `cohomology.rs`: the closed basis dual to the tree–cotree generators, `∫ α ∧ β` and
 //!   `∫ α ∧ *β`.
-//! - `harmonic.rs`: harmonic projection, one factorization for all `2g` forms.
+//! - `harmonic.rs`: harmonic projection, one factorization for all `2g` forms (two of half
+//!   the size on a double covering).
 //! - `conjugate.rs`: the Gu–Yau wedge system and its nearest exact complex structure
 //!   ([`ConjugateMethod`]).
 //! - `periods.rs`: holomorphic basis, period matrix, bilinear residual, τ

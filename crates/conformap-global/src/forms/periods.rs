@@ -2,6 +2,8 @@
 //! Riemann's bilinear relations as a residual, and the conformal modulus τ of a torus.
 
 use conformap_mesh::HomologyBasis;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
 use num_complex::Complex64;
 
 use crate::forms::cohomology::Cochain;
@@ -9,37 +11,66 @@ use crate::forms::cohomology::Cochain;
 /// A complex 1-form: one value per edge.
 pub type ComplexCochain = Vec<Complex64>;
 
+/// The cochains `h` as the columns of an `edges × n` matrix.
+pub(crate) fn cochain_matrix(h: &[Cochain]) -> Mat<f64> {
+    let rows = h.first().map_or(0, Vec::len);
+    Mat::from_fn(rows, h.len(), |e, k| h[k][e])
+}
+
 /// `φ_k = ω_k + i Σ_j Λ_jk ω_j` for every `k` (the `2g` holomorphic basis forms; only `g` of
-/// them are complex-linearly independent).
+/// them are complex-linearly independent): the imaginary parts are one matrix product
+/// `H Λ` (`H` the harmonic forms as columns).
 pub fn holomorphic_basis(h: &[Cochain], lambda: &[f64]) -> Vec<ComplexCochain> {
     let n = h.len();
+    let hm = cochain_matrix(h);
+    let lm = Mat::<f64>::from_fn(n, n, |j, k| lambda[j * n + k]);
+    let mut im = Mat::<f64>::zeros(hm.nrows(), n);
+    matmul(
+        im.as_mut(),
+        Accum::Replace,
+        hm.as_ref(),
+        lm.as_ref(),
+        1.0,
+        Par::rayon(0),
+    );
     (0..n)
         .map(|k| {
-            (0..h[k].len())
-                .map(|e| {
-                    let im: f64 = (0..n).map(|j| lambda[j * n + k] * h[j][e]).sum();
-                    Complex64::new(h[k][e], im)
-                })
+            h[k].iter()
+                .zip(im.col_as_slice(k))
+                .map(|(&re, &im)| Complex64::new(re, im))
                 .collect()
         })
         .collect()
 }
 
-/// The periods `P_jk = ∮_{γ_j} φ_k`, integrated along the generator loops (row `j`:
-/// generator, column `k`: form), row-major. With the dual cohomology basis
-/// `P = I + iΛ` up to rounding.
-pub fn period_matrix(basis: &HomologyBasis, forms: &[ComplexCochain]) -> Vec<Complex64> {
-    let n = forms.len();
-    let mut p = vec![Complex64::new(0.0, 0.0); basis.generators.len() * n];
+/// The periods of the real forms `h` along the generator loops (row `j`: generator, column
+/// `k`: form), row-major.
+pub fn harmonic_periods(basis: &HomologyBasis, h: &[Cochain]) -> Vec<f64> {
+    let n = h.len();
+    let mut p = vec![0.0; basis.generators.len() * n];
     for (j, g) in basis.generators.iter().enumerate() {
-        for (k, phi) in forms.iter().enumerate() {
+        for (k, w) in h.iter().enumerate() {
             p[j * n + k] = g
                 .halfedges
                 .iter()
-                .map(|&h| {
-                    basis.edges.sign(h as usize) * phi[basis.edges.edge_of[h as usize] as usize]
-                })
+                .map(|&he| basis.edges.on_halfedge(w, he as usize))
                 .sum();
+        }
+    }
+    p
+}
+
+/// The periods `P_jk = ∮_{γ_j} φ_k` of the holomorphic basis `φ_k = ω_k + i Σ_l Λ_lk ω_l`
+/// from the periods `ph` of the harmonic forms ([`harmonic_periods`]): `P = P_h + i P_h Λ`
+/// (row-major, generator `j`, form `k`), without building the complex forms. With the
+/// dual cohomology basis `P = I + iΛ` up to rounding.
+pub fn period_matrix(ph: &[f64], lambda: &[f64], n: usize) -> Vec<Complex64> {
+    let rows = ph.len() / n.max(1);
+    let mut p = vec![Complex64::new(0.0, 0.0); rows * n];
+    for j in 0..rows {
+        for k in 0..n {
+            let im: f64 = (0..n).map(|l| ph[j * n + l] * lambda[l * n + k]).sum();
+            p[j * n + k] = Complex64::new(ph[j * n + k], im);
         }
     }
     p

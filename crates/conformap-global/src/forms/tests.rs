@@ -143,3 +143,28 @@ fn genus_zero_is_refused_naming_the_command() {
     let err = global_map(&mesh, &GlobalMapOptions::DEFAULT.with_form(Some(2))).expect_err("k");
     assert!(err.to_string().contains("form"));
 }
+
+#[test]
+fn wedge_and_gram_products_match_the_pairwise_face_sums() {
+    use crate::forms::cohomology::{cohomology_basis, edge_weights, inner_product, wedge};
+    use crate::forms::conjugate::wedge_and_gram;
+    let mesh = read_plain_obj(&fixture_path("eightsim.obj")).expect("eightsim");
+    let basis = conformap_mesh::homology_basis(&mesh, None).expect("basis");
+    let (closed, _) = cohomology_basis(&mesh, &basis);
+    let weights = edge_weights(&mesh, &basis);
+    let (w, g) = wedge_and_gram(&basis, &weights, &closed, mesh.num_faces());
+    let n = closed.len();
+    assert_eq!(n, 4);
+    for i in 0..n {
+        for j in 0..n {
+            let ww = wedge(&basis, 0..mesh.num_faces(), &closed[i], &closed[j]);
+            let gg = inner_product(&weights, &closed[i], &closed[j]);
+            assert!(
+                (w[i * n + j] - ww).abs() < 1e-12,
+                "W[{i},{j}] {} vs {ww}",
+                w[i * n + j]
+            );
+            assert!((g[i * n + j] - gg).abs() < 1e-12 * gg.abs().max(1.0));
+        }
+    }
+}

@@ -5,11 +5,12 @@
 //!
 //! Module map:
 //! - `options.rs`: [`TopologyOptOptions`] and its documented defaults (slit length 4 % of
-//!   the bounding-box diagonal, 16 slits, patience 2, extreme thresholds).
+//!   the bounding-box diagonal, 16 slits, patience 3, extreme thresholds).
 //! - `clusters.rs`: the per-vertex area ratio (the discrete `λ⁻²` of Eq. 12) and the
 //!   extreme clusters, their centres and the nearest vertices.
 //! - `run.rs`: the greedy loop [`topology_opt`] → [`TopologyOpt`] (every step, the best
-//!   layout seen, starting map included).
+//!   layout seen, starting map included: the uniform-Möbius sphere map of a closed genus-0
+//!   surface, the uniform-Möbius disk map of a disk, the most uniform form otherwise).
 //!
 //! The slits themselves (paths, cutting) are `conformap_mesh::SlitPlanner`'s.
 

@@ -8,8 +8,10 @@ use conformap_mesh::{SlitMesh, SlitPlanner, Topology, TriMesh};
 use serde::{Deserialize, Serialize};
 
 use crate::forms::{global_map, GlobalMap};
-use crate::mobius::energy::{planar_signed_area, sphere_face_areas, surface_shares};
-use crate::mobius::optimize::optimize_sphere_mobius;
+use crate::mobius::energy::{
+    planar_face_areas, planar_signed_area, sphere_face_areas, surface_shares,
+};
+use crate::mobius::optimize::{optimize_disk_mobius, optimize_sphere_mobius};
 use crate::mobius::options::{MobiusObjective, MobiusOptions};
 use crate::sphere::map::{sphere_map, SphereOptions};
 use crate::stats::log_ratio_stats;
@@ -18,6 +20,7 @@ use crate::topology_opt::clusters::{
 };
 use crate::topology_opt::options::TopologyOptOptions;
 use crate::{GlobalError, LogRatioStats};
+use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
 
 /// Cluster vertices tried as a slit centre, nearest to the cluster's centre first: `8`.
 /// The nearest is the paper's extreme point; when it is blocked (next to an earlier slit)
@@ -72,15 +75,31 @@ pub struct TopologyStep {
     pub time_ms: f64,
     /// Time of the step's factorizations, milliseconds (the yardstick).
     pub factor_ms: f64,
-    /// Time of the choice of the form (area products and the uniform search),
+    /// Time of the choice of the form (edge values per face, the uniform search),
     /// milliseconds.
     pub objective_ms: f64,
+    /// How the search evaluated the energy (`moments` or `direct`, see
+    /// [`crate::ObjectiveReport::energy_model`]); empty for a sphere or disk map.
+    #[serde(default)]
+    pub energy_model: String,
+    /// Newton iterations of the search over all its starts (0 for a sphere or disk map).
+    #[serde(default)]
+    pub newton_iterations: usize,
+    /// Newton iterations on the search's coarse level, over all its starts (0 without one).
+    #[serde(default)]
+    pub coarse_iterations: usize,
+    /// The global map's own timings by stage (all zero for a sphere or disk map).
+    #[serde(default)]
+    pub stages_ms: crate::GlobalTimings,
 }
 
 /// The layout the loop returns.
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub enum BestLayout {
+    /// The uniformity-optimal Möbius disk map (a disk automorphism of the default CCEM map)
+    /// of a disk input: one map value per input vertex, in the closed unit disk.
+    Disk(Vec<num_complex::Complex64>),
     /// The uniformity-optimal Möbius sphere map of a closed genus-0 input: one unit vector
     /// per input vertex.
     Sphere(Vec<[f64; 3]>),
@@ -135,22 +154,55 @@ fn area_stats(image: &[f64], shares: &[f64]) -> LogRatioStats {
     log_ratio_stats(&logs)
 }
 
-/// Measures a global map of `mesh` or of its slit mesh (`original`: input vertex of each
-/// slit-mesh vertex, `None` for the input itself).
+/// How many faces of the double covering's first copy each face of `mapped` became: 1, plus
+/// one per edge joining two boundary vertices through the interior (a chord, split at its
+/// midpoint by `double_cover_surface`, whose faces follow in the input's order).
+fn children_per_face(mapped: &TriMesh) -> Vec<usize> {
+    let opp = mapped.opposite_halfedges();
+    let bnd = mapped.boundary_flags();
+    (0..mapped.num_faces())
+        .map(|f| {
+            1 + (0..3)
+                .filter(|&k| {
+                    let h = 3 * f + k;
+                    let (a, b) = mapped.halfedge_vertices(h);
+                    opp[h] != conformap_mesh::NO_HALFEDGE && bnd[a as usize] && bnd[b as usize]
+                })
+                .count()
+        })
+        .collect()
+}
+
+/// Measures a global map of `mesh` or of its slit mesh `slit` (`None`: the input itself).
+/// When the double covering split boundary chords, each input face's image area is the sum
+/// of its pieces', and the energy is measured over the input's faces.
 fn measure_global(
     mesh: &TriMesh,
     map: &GlobalMap,
-    original: Option<&[u32]>,
+    slit: Option<&SlitMesh>,
     shares: &[f64],
 ) -> Measured {
     let uv = map.input_corner_uv();
-    let image: Vec<f64> = (0..mesh.num_faces())
-        .map(|f| planar_signed_area([uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]))
-        .collect();
+    let piece = |f: usize| planar_signed_area([uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]);
+    let image: Vec<f64> = if map.split_edges == 0 {
+        (0..mesh.num_faces()).map(piece).collect()
+    } else {
+        let mut next = 0;
+        children_per_face(slit.map_or(mesh, |s| &s.mesh))
+            .into_iter()
+            .map(|c| {
+                let a = (next..next + c).map(piece).sum();
+                next += c;
+                a
+            })
+            .collect()
+    };
     let mut excluded = vec![false; mesh.num_vertices()];
-    for v in 0..map.input_vertices {
+    let mapped_vertices = slit.map_or(mesh.num_vertices(), |s| s.original.len());
+    // chord midpoints (numbered after the mapped mesh's vertices) have no input vertex
+    for v in 0..map.input_vertices.min(mapped_vertices) {
         if map.zeros.in_zero_cluster[v] {
-            excluded[original.map_or(v, |o| o[v] as usize)] = true;
+            excluded[slit.map_or(v, |s| s.original[v] as usize)] = true;
         }
     }
     let (at, outside) = map.input_folds();
@@ -158,7 +210,7 @@ fn measure_global(
         added: Vec::new(),
         slits: 0,
         surface_genus: map.surface_genus,
-        energy: map.metrics.uniformity_energy,
+        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
         ratio_to_start: 1.0,
         area_distortion_log: area_stats(&image, shares),
         folds_at_zeros: at,
@@ -166,6 +218,18 @@ fn measure_global(
         time_ms: map.timings_ms.total,
         factor_ms: map.timings_ms.factor,
         objective_ms: map.timings_ms.objective,
+        energy_model: map.objective.energy_model.clone(),
+        newton_iterations: map
+            .objective
+            .search
+            .as_ref()
+            .map_or(0, |s| s.iterations_total),
+        coarse_iterations: map
+            .objective
+            .search
+            .as_ref()
+            .map_or(0, |s| s.coarse_iterations),
+        stages_ms: map.timings_ms,
     };
     Measured {
         image,
@@ -248,6 +312,9 @@ fn start(
     options: &TopologyOptOptions,
     shares: &[f64],
 ) -> Result<(Measured, BestLayout), GlobalError> {
+    if mesh.topology() == Topology::Disk {
+        return start_disk(mesh, shares);
+    }
     if mesh.topology() != Topology::Sphere {
         let map = global_map(mesh, &options.global)?;
         let m = measure_global(mesh, &map, None, shares);
@@ -288,6 +355,10 @@ fn start(
         time_ms: ms(t),
         factor_ms: map.report.timings_ms.factor,
         objective_ms: 0.0,
+        energy_model: String::new(),
+        newton_iterations: 0,
+        coarse_iterations: 0,
+        stages_ms: crate::GlobalTimings::default(),
     };
     let excluded = vec![false; mesh.num_vertices()];
     Ok((
@@ -300,8 +371,51 @@ fn start(
     ))
 }
 
+/// The starting map of a disk: the default disk map (CCEM with BFGS, flip-free) moved by
+/// its uniformity-optimal disk automorphism.
+fn start_disk(mesh: &TriMesh, shares: &[f64]) -> Result<(Measured, BestLayout), GlobalError> {
+    let t = Instant::now();
+    let disk = compute_disk_map(mesh, DiskMethod::default(), &DiskOptions::DEFAULT)?;
+    let best = optimize_disk_mobius(
+        mesh,
+        &disk.map,
+        &MobiusObjective::Uniform,
+        &MobiusOptions::DEFAULT,
+    )?;
+    let image = planar_face_areas(mesh, &best.map);
+    let folded = image.iter().filter(|a| **a <= 0.0).count();
+    let step = TopologyStep {
+        added: Vec::new(),
+        slits: 0,
+        surface_genus: 0,
+        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
+        ratio_to_start: 1.0,
+        area_distortion_log: area_stats(&image, shares),
+        folds_at_zeros: 0,
+        folds_outside_zeros: folded,
+        time_ms: ms(t),
+        factor_ms: disk.report.timings_ms.factor,
+        objective_ms: 0.0,
+        energy_model: String::new(),
+        newton_iterations: 0,
+        coarse_iterations: 0,
+        stages_ms: crate::GlobalTimings::default(),
+    };
+    let excluded = vec![false; mesh.num_vertices()];
+    Ok((
+        Measured {
+            image,
+            excluded,
+            step,
+        },
+        BestLayout::Disk(best.map),
+    ))
+}
+
 /// Topological optimization (Jin et al. 2004, §3.5): starting from the uniformity-optimal
-/// Möbius sphere map (closed genus 0) or the most uniform holomorphic form (genus ≥ 1),
+/// Möbius sphere map (closed genus 0), the uniformity-optimal disk automorphism of the
+/// default disk map (a disk) or the most uniform holomorphic form (genus ≥ 1 or several
+/// boundary loops),
 /// greedily slits the surface at all extreme clusters of the current map at once (see
 /// `clusters.rs`), maps the slit surface through its double covering by its most uniform
 /// form ([`global_map`]), and repeats on the latest slit surface until
@@ -311,9 +425,10 @@ fn start(
 /// result is never less uniform than it.
 ///
 /// # Errors
-/// [`GlobalError::WrongTopology`] for a disk or several components;
+/// [`GlobalError::WrongTopology`] for several components;
 /// [`GlobalError::InvalidOption`] for a slit length that is not positive and finite;
-/// the errors of the starting map ([`crate::sphere_map`], [`global_map`]). A failed map of
+/// the errors of the starting map ([`crate::sphere_map`], [`GlobalError::Disk`],
+/// [`global_map`]). A failed map of
 /// a slit surface ends the loop instead (see [`TopologyOpt::stop`]).
 pub fn topology_opt(
     mesh: &TriMesh,
@@ -324,6 +439,7 @@ pub fn topology_opt(
     let usable = matches!(
         found,
         Topology::Sphere
+            | Topology::Disk
             | Topology::MultiplyConnected { .. }
             | Topology::ClosedHigherGenus { .. }
             | Topology::OpenHigherGenus { .. }
@@ -331,8 +447,8 @@ pub fn topology_opt(
     if !usable {
         return Err(GlobalError::WrongTopology {
             operation: "topological optimization",
-            expected: "one closed genus-0 surface, or a surface of genus ≥ 1 or with ≥ 2 \
-                       boundary loops",
+            expected: "one connected surface (closed genus 0, a disk, genus ≥ 1 or several \
+                       boundary loops)",
             found,
         });
     }
@@ -374,11 +490,10 @@ pub fn topology_opt(
         planner = next;
         let cut = planner.cut(mesh)?;
         let map = match global_map(&cut.mesh, &options.global) {
-            Ok(map) if map.split_edges == 0 => map,
-            Ok(_) => break "the double covering had to split edges (not expected)".to_owned(),
+            Ok(map) => map,
             Err(e) => break format!("the map of the slit surface failed: {e}"),
         };
-        let mut m = measure_global(mesh, &map, Some(&cut.original), &shares);
+        let mut m = measure_global(mesh, &map, Some(&cut), &shares);
         m.step.added = added;
         m.step.slits = planner.slits().len();
         m.step.ratio_to_start = m.step.energy / e0;

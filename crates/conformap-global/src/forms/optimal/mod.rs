@@ -2,9 +2,13 @@
 //! `φ = Σ λ_k φ_k` of the `2g` basis forms to lay out.
 //!
 //! Module map:
-//! - `products.rs`: per-face `2g × 2g` area forms, whitened by the total area form.
+//! - `faces.rs`: the whitened basis forms' values on each face's edges, and the energy,
+//!   gradient and Hessian summed straight over the faces from them (`O(F (2g)²)` per
+//!   Hessian; high genus, few starts).
+//! - `products.rs`: per-face `2g × 2g` area forms, whitened by the total area form (the
+//!   emphasized area and the zero allocation).
 //! - `moments.rs`: the second moments of the area forms, so that the energy and its
-//!   derivatives cost `O((2g)⁴)` whatever the face count.
+//!   derivatives cost `O((2g)⁴)` whatever the face count (low genus, many starts).
 //! - `uniform.rs`: the scale-free uniformity energy (Eq. 6–7), analytic gradient and
 //!   Hessian, saddle-free Newton on the coefficient sphere.
 //! - `search.rs`: the seeded multistart ([`FormSearchOptions`], [`UniformSearch`]).
@@ -15,6 +19,7 @@
 //! - `mod.rs` (here): [`Objective`], [`ObjectiveReport`], the dispatch.
 
 mod eigen;
+mod faces;
 mod moments;
 mod products;
 mod search;
@@ -35,8 +40,9 @@ pub use search::{
 };
 pub use uniform::{GRADIENT_TOL, MAX_NEWTON_ITERATIONS};
 
-pub(crate) use products::area_products;
-
+use crate::forms::optimal::faces::FaceForms;
+use crate::forms::optimal::products::AreaProducts;
+use crate::forms::optimal::uniform::EnergyModel;
 use crate::forms::periods::ComplexCochain;
 use crate::forms::zeros::{vertex_stretch, ZeroReport};
 use crate::GlobalError;
@@ -149,6 +155,13 @@ pub struct ObjectiveReport {
     pub emphasis: Option<EmphasisReport>,
     /// `Zeros` only (filled after the layout).
     pub zeros: Option<ZeroAllocationReport>,
+    /// How the search evaluated the energy: `moments` (precomputed second moments of the
+    /// area forms, `O((2g)⁴)` per Newton step) or `direct` (sums over the faces,
+    /// `O(F (2g)²)` per Newton step; on large meshes with a coarse level first, see
+    /// `faces::COARSE_FACES`), whichever costs less for the search's starts; empty when
+    /// there was no search.
+    #[serde(default)]
+    pub energy_model: String,
     /// Wall-clock milliseconds: the area forms, then the objective's solve.
     pub products_ms: f64,
     /// See [`Self::products_ms`].
@@ -176,23 +189,18 @@ pub(crate) fn choose(
     search: &FormSearchOptions,
 ) -> Result<ObjectiveReport, GlobalError> {
     let t = std::time::Instant::now();
-    let p = area_products(s.mesh, s.edges, s.forms, s.input_faces)?;
+    let ff = FaceForms::new(s.mesh, s.edges, s.forms, s.input_faces)?;
     let products_ms = ms(t);
     let t = std::time::Instant::now();
-    let n = p.n;
-    let basis_mu: Vec<Vec<f64>> = (0..n)
-        .map(|k| {
-            let mut e = vec![0.0; n];
-            e[k] = 1.0;
-            p.whiten(&e)
-        })
-        .collect();
-    let basis_uniformity: Vec<f64> = basis_mu.iter().map(|m| uniform::energy(&p, m)).collect();
+    let n = ff.n;
+    let basis_mu: Vec<Vec<f64>> = (0..n).map(|k| ff.whiten(&unit_vector(n, k))).collect();
+    let basis_uniformity = ff.basis_energy.clone();
     let best_basis = (0..n)
         .min_by(|&a, &b| basis_uniformity[a].total_cmp(&basis_uniformity[b]))
         .unwrap_or(0);
     let (mut search_out, mut opposite, mut ratio, mut emphasis, mut zeros) =
         (None, None, None, None, None);
+    let mut energy_model = String::new();
     let mu = match (forced, objective) {
         (Some(k), _) => basis_mu[k].clone(),
         (None, Objective::BestBasisForm) => basis_mu[best_basis].clone(),
@@ -202,10 +210,37 @@ pub(crate) fn choose(
         }
         (None, Objective::Uniform | Objective::LeastUniform) => {
             let maximize = matches!(objective, Objective::LeastUniform);
-            let moments = moments::Moments::new(&p);
-            let found = search::multistart(&p, &moments, maximize, search);
-            if search.compare {
-                let other = search::multistart(&p, &moments, !maximize, search);
+            let runs = if search.compare { 2 } else { 1 };
+            let basis_starts = search.basis_starts.map_or(n, |k| k.clamp(1, n));
+            let starts = runs * (basis_starts + search.starts);
+            let (found, other) = if faces::use_moments(ff.faces(), n, starts) {
+                energy_model = "moments".to_owned();
+                let moments = moments::Moments::from_faces(&ff);
+                search_pair(
+                    &moments,
+                    None,
+                    (&basis_mu, &basis_uniformity),
+                    maximize,
+                    search,
+                )
+            } else {
+                if let Some(stride) = faces::coarse_stride(ff.faces()) {
+                    energy_model = format!("direct, coarse level 1/{stride} of the faces");
+                    let coarse = ff.sample(stride);
+                    let coarse: &dyn EnergyModel = &coarse;
+                    search_pair(
+                        &ff,
+                        Some(coarse),
+                        (&basis_mu, &basis_uniformity),
+                        maximize,
+                        search,
+                    )
+                } else {
+                    energy_model = "direct".to_owned();
+                    search_pair(&ff, None, (&basis_mu, &basis_uniformity), maximize, search)
+                }
+            };
+            if let Some(other) = other {
                 let (hi, lo) = if maximize {
                     (found.energy, other.energy)
                 } else {
@@ -220,6 +255,7 @@ pub(crate) fn choose(
         }
         (None, Objective::Emphasize { faces, maximize }) => {
             let mask = crate::region_mask(s.input_faces, faces)?;
+            let p = AreaProducts::from_faces(&ff);
             let (mu, report) = eigen::emphasize(&p, &mask, *maximize);
             emphasis = Some(report);
             mu
@@ -246,6 +282,7 @@ pub(crate) fn choose(
             let mut targets = vertices.clone();
             targets.sort_unstable();
             targets.dedup();
+            let p = AreaProducts::from_faces(&ff);
             let m = targets::condition_gram(s.mesh, s.edges, s.forms, &p, &targets);
             let free = n.saturating_sub(2 * targets.len());
             let (mu, method) = if free >= 2 {
@@ -253,7 +290,18 @@ pub(crate) fn choose(
                 let basis = targets::null_space(&m, n, free);
                 let sub = targets::restricted(&p, &basis, free);
                 let moments = moments::Moments::new(&sub);
-                let found = search::multistart(&sub, &moments, false, &search.with_compare(false));
+                let sub_basis: Vec<Vec<f64>> = (0..free)
+                    .map(|k| sub.whiten(&unit_vector(free, k)))
+                    .collect();
+                energy_model = "moments".to_owned();
+                let found = search::multistart(
+                    &moments,
+                    None,
+                    &sub_basis,
+                    None,
+                    false,
+                    &search.with_compare(false),
+                );
                 let mu = targets::lift(&basis, &found.mu, n);
                 search_out = Some(found);
                 (mu, "exact")
@@ -287,17 +335,40 @@ pub(crate) fn choose(
         } else {
             objective.name().to_owned()
         },
-        coefficients: p.coefficients(&mu),
-        uniformity: uniform::energy(&p, &mu),
+        coefficients: ff.coefficients(&mu),
+        uniformity: ff.energy(&mu),
         basis_uniformity,
         search: search_out,
         opposite,
         max_min_ratio: ratio,
         emphasis,
         zeros,
+        energy_model,
         products_ms,
         solve_ms: ms(t),
     })
+}
+
+/// The `k`-th unit vector of dimension `n`.
+fn unit_vector(n: usize, k: usize) -> Vec<f64> {
+    let mut e = vec![0.0; n];
+    e[k] = 1.0;
+    e
+}
+
+/// The search for `maximize` on `model` from the whitened basis forms (with their
+/// energies) and, with [`FormSearchOptions::compare`], the opposite extreme's.
+fn search_pair<M: EnergyModel + ?Sized>(
+    model: &M,
+    coarse: Option<&dyn EnergyModel>,
+    (basis, energy): (&[Vec<f64>], &[f64]),
+    maximize: bool,
+    search: &FormSearchOptions,
+) -> (UniformSearch, Option<UniformSearch>) {
+    let run = |maximize| search::multistart(model, coarse, basis, Some(energy), maximize, search);
+    let found = run(maximize);
+    let other = search.compare.then(|| run(!maximize));
+    (found, other)
 }
 
 /// Fills the zero-allocation report once the layout's zeros are known: `form` is the

@@ -17,6 +17,7 @@
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
 
+use crate::forms::optimal::faces::FaceForms;
 use crate::forms::optimal::products::AreaProducts;
 
 /// Faces per block of the Gram product `T = Σ v_f v_fᵀ`. Default 4096: the block of packed
@@ -44,7 +45,18 @@ pub struct Moments {
 impl Moments {
     /// The moments of `p`'s faces.
     pub fn new(p: &AreaProducts) -> Self {
-        let n = p.n;
+        Self::build(p.n, &p.s, |f, i, j| p.face(f)[i * p.n + j])
+    }
+
+    /// The moments of `faces`' area forms, streamed block by block from the edge values
+    /// (no `n × n` form per face is ever stored).
+    pub fn from_faces(faces: &FaceForms) -> Self {
+        Self::build(faces.n, &faces.s, |f, i, j| faces.area_form_entry(f, i, j))
+    }
+
+    /// The moments of the area forms `entry(f, i, j) = Q̃_f[i][j]` of the faces of shares
+    /// `s`.
+    fn build(n: usize, s: &[f64], entry: impl Fn(usize, usize, usize) -> f64) -> Self {
         let m = n * (n + 1) / 2;
         let mut index = vec![0; n * n];
         let mut pairs = Vec::with_capacity(m);
@@ -52,16 +64,19 @@ impl Moments {
             for j in i..n {
                 index[i * n + j] = pairs.len();
                 index[j * n + i] = pairs.len();
-                pairs.push(i * n + j);
+                pairs.push((i, j));
             }
         }
-        let faces = p.faces();
+        let faces = s.len();
         let mut t = Mat::<f64>::zeros(m, m);
         let mut b = vec![0.0; m];
         let mut start = 0;
         while start < faces {
             let end = (start + GRAM_BLOCK_FACES).min(faces);
-            let block = Mat::<f64>::from_fn(end - start, m, |r, col| p.face(start + r)[pairs[col]]);
+            let block = Mat::<f64>::from_fn(end - start, m, |r, col| {
+                let (i, j) = pairs[col];
+                entry(start + r, i, j)
+            });
             matmul(
                 t.as_mut(),
                 Accum::Add,
@@ -71,14 +86,14 @@ impl Moments {
                 Par::rayon(0),
             );
             for r in 0..end - start {
-                let s = p.s[start + r];
+                let s = s[start + r];
                 for (col, bc) in b.iter_mut().enumerate() {
                     *bc += s * block[(r, col)];
                 }
             }
             start = end;
         }
-        let c = p.s.iter().map(|s| s * s).sum();
+        let c = s.iter().map(|s| s * s).sum();
         let t = (0..m * m).map(|k| t[(k / m, k % m)]).collect();
         Self {
             n,

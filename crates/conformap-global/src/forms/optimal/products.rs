@@ -9,17 +9,15 @@
 //! the unit sphere of `μ` is exactly the area constraint of Eq. 6 (up to the scale, which no
 //! scale-free objective sees), and multiplying the form by `e^{iθ}` is a rotation of `μ`.
 
+#[cfg(test)]
 use conformap_mesh::{EdgeIndex, TriMesh};
 use num_complex::Complex64;
 
-use crate::forms::dense::{symmetric_eigen, symmetric_function};
+use crate::forms::dense::symmetric_function;
+use crate::forms::optimal::faces::FaceForms;
 use crate::forms::periods::ComplexCochain;
+#[cfg(test)]
 use crate::GlobalError;
-
-/// Smallest eigenvalue of the area form `C`, relative to its largest, accepted as positive
-/// definite. Default `1e-12`: a discrete holomorphic basis of a valid mesh has a condition
-/// number far below `1e12`; below that the basis is degenerate.
-pub const AREA_FORM_MIN_RELATIVE_EIGENVALUE: f64 = 1e-12;
 
 /// The whitened per-face area forms of the first `faces` faces.
 #[derive(Debug, Clone)]
@@ -44,14 +42,6 @@ impl AreaProducts {
     /// Number of faces.
     pub fn faces(&self) -> usize {
         self.s.len()
-    }
-
-    /// Basis coefficients `λ = W μ`.
-    pub fn coefficients(&self, mu: &[f64]) -> Vec<f64> {
-        let n = self.n;
-        (0..n)
-            .map(|i| (0..n).map(|j| self.w[i * n + j] * mu[j]).sum())
-            .collect()
     }
 
     /// Whitened coordinates `μ = C^{1/2} λ` of basis coefficients (`W⁻¹ λ`), by solving
@@ -85,74 +75,42 @@ impl AreaProducts {
 }
 
 /// The area forms of the first `faces` faces of `mesh` under the holomorphic basis
-/// `forms` (one complex value per edge of `edges`).
+/// `forms` (one complex value per edge of `edges`), expanded from [`FaceForms`].
 ///
 /// # Errors
 /// [`GlobalError::DegenerateFormBasis`] if `C` is not positive definite.
+#[cfg(test)]
 pub fn area_products(
     mesh: &TriMesh,
     edges: &EdgeIndex,
     forms: &[ComplexCochain],
     faces: usize,
 ) -> Result<AreaProducts, GlobalError> {
-    let n = forms.len();
-    let nn = n * n;
-    let val = |k: usize, h: usize| edges.sign(h) * forms[k][edges.edge_of[h] as usize];
-    let mut raw = vec![0.0; faces * nn];
-    let mut c = vec![0.0; nn];
-    let (mut a, mut b) = (vec![Complex64::default(); n], vec![Complex64::default(); n]);
-    for f in 0..faces {
-        for k in 0..n {
-            a[k] = val(k, 3 * f);
-            b[k] = -val(k, 3 * f + 2);
-        }
-        let q = &mut raw[f * nn..(f + 1) * nn];
-        fill_area_form(&a, &b, q);
-        for (ci, qi) in c.iter_mut().zip(q.iter()) {
-            *ci += qi;
-        }
-    }
-    let (eig, _) = symmetric_eigen(&c, n);
-    let (lo, hi) = eig
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
-    if !(lo > AREA_FORM_MIN_RELATIVE_EIGENVALUE * hi) {
-        return Err(GlobalError::DegenerateFormBasis {
-            reason: "the layout area is not a positive definite form of the coefficients",
-        });
-    }
-    let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
-    let mut q = vec![0.0; faces * nn];
-    let mut tmp = vec![0.0; nn];
-    for f in 0..faces {
-        let src = &raw[f * nn..(f + 1) * nn];
-        // tmp = Q W, then Q̃ = W tmp
-        for i in 0..n {
-            for j in 0..n {
-                tmp[i * n + j] = (0..n).map(|k| src[i * n + k] * w[k * n + j]).sum();
-            }
-        }
-        let dst = &mut q[f * nn..(f + 1) * nn];
-        for i in 0..n {
-            for j in 0..n {
-                dst[i * n + j] = (0..n).map(|k| w[i * n + k] * tmp[k * n + j]).sum();
-            }
-        }
-    }
-    let areas = conformap_operators::face_areas(mesh);
-    let surface_area: f64 = areas[..faces].iter().sum();
-    let s = areas[..faces].iter().map(|x| x / surface_area).collect();
-    Ok(AreaProducts { n, q, s, w })
+    Ok(AreaProducts::from_faces(&FaceForms::new(
+        mesh, edges, forms, faces,
+    )?))
 }
 
-/// `Q` with `λᵀ Q λ = ½ Im(conj(Σ λ_k a_k) Σ λ_j b_j)`, symmetrized.
-fn fill_area_form(a: &[Complex64], b: &[Complex64], q: &mut [f64]) {
-    let n = a.len();
-    for k in 0..n {
-        for j in 0..n {
-            let m_kj = (a[k].conj() * b[j]).im;
-            let m_jk = (a[j].conj() * b[k]).im;
-            q[k * n + j] = 0.25 * (m_kj + m_jk);
+impl AreaProducts {
+    /// The `n × n` area forms `Q̃_f` of `faces` (`O(F n²)` memory: only the objectives
+    /// that need a form per face build them — the emphasized area and the zero allocation).
+    pub fn from_faces(faces: &FaceForms) -> Self {
+        let n = faces.n;
+        let mut q = vec![0.0; faces.faces() * n * n];
+        for (f, dst) in q.chunks_mut(n * n).enumerate() {
+            for i in 0..n {
+                for j in i..n {
+                    let x = faces.area_form_entry(f, i, j);
+                    dst[i * n + j] = x;
+                    dst[j * n + i] = x;
+                }
+            }
+        }
+        Self {
+            n,
+            q,
+            s: faces.s.clone(),
+            w: faces.w.clone(),
         }
     }
 }

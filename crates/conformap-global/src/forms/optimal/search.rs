@@ -7,9 +7,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::forms::optimal::moments::Moments;
-use crate::forms::optimal::products::AreaProducts;
-use crate::forms::optimal::uniform::{local_search, LocalOptimum};
+use crate::forms::optimal::uniform::{local_search, EnergyModel, LocalOptimum};
 
 /// Default number of random starts. 48: on fertility (g = 4) the best optimum is reached by
 /// about a quarter of the starts (papers README; measured here, see the tests), so 48
@@ -114,6 +112,14 @@ pub struct UniformSearch {
     pub iterations_max: usize,
     /// Starts that stopped without meeting the gradient test.
     pub unconverged: usize,
+    /// Newton iterations on the coarse level (a sample of the faces) over all starts,
+    /// before [`Self::iterations_total`] on all faces; 0 without a coarse level.
+    #[serde(default)]
+    pub coarse_iterations: usize,
+    /// Starts whose coarse optimum was more than `POLISH_WINDOW` from the best coarse one:
+    /// not polished, not counted in [`Self::starts`] nor in the optima.
+    #[serde(default)]
+    pub unpolished: usize,
     /// Wall-clock milliseconds of the search.
     pub time_ms: f64,
     /// The best form's whitened coefficients (unit length).
@@ -152,26 +158,91 @@ pub fn random_directions(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The multistart search (with `p`'s moments) of the most (`maximize = false`) or least uniform form.
-pub fn multistart(
-    p: &AreaProducts,
-    moments: &Moments,
+/// A coarse optimum is polished on all faces only when its coarse energy is within this
+/// relative window of the best coarse optimum's: `0.05`. The coarse energy (16k sampled
+/// faces) differs from the full one by well under 1 % near the optima (measured on
+/// armadillo and spot, docs/benchmarks.md, issue 23), while distinct local optima of a
+/// high-genus surface differ by 0.4 % and more; a coarse optimum 5 % worse than the best
+/// does not win after its polish, and each polish costs a few full `O(F n²)` Newton steps.
+pub const POLISH_WINDOW: f64 = 0.05;
+
+/// Each start descended on `coarse`, then polished on `model` — once per distinct coarse
+/// optimum (energies equal within [`OPTIMUM_MATCH_REL`]: the same local optimum, whose
+/// polish the other starts would repeat step for step; they share its result, with 0
+/// iterations of their own), and only within [`POLISH_WINDOW`] of the best coarse optimum.
+/// Returns the optima of the polished starts, the coarse iterations and the starts left
+/// unpolished.
+fn two_level<M: EnergyModel + ?Sized>(
+    model: &M,
+    coarse: &dyn EnergyModel,
+    starts: &[Vec<f64>],
+    maximize: bool,
+) -> (Vec<LocalOptimum>, usize, usize) {
+    let near: Vec<LocalOptimum> = starts
+        .par_iter()
+        .map(|s| local_search(coarse, s, maximize))
+        .collect();
+    let sign = if maximize { -1.0 } else { 1.0 };
+    let best = near
+        .iter()
+        .map(|r| sign * r.energy)
+        .fold(f64::INFINITY, f64::min);
+    let promising = |e: f64| sign * e <= best + POLISH_WINDOW * best.abs();
+    let mut rep: Vec<usize> = Vec::with_capacity(near.len());
+    for (i, a) in near.iter().enumerate() {
+        let same = (0..i).find(|&j| {
+            rep[j] == j
+                && (a.energy - near[j].energy).abs() <= OPTIMUM_MATCH_REL * near[j].energy.abs()
+        });
+        rep.push(same.unwrap_or(i));
+    }
+    let polished: Vec<Option<LocalOptimum>> = (0..near.len())
+        .into_par_iter()
+        .map(|i| {
+            (rep[i] == i && promising(near[i].energy))
+                .then(|| local_search(model, &near[i].mu, maximize))
+        })
+        .collect();
+    let results: Vec<LocalOptimum> = rep
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &r)| {
+            let mut out = polished[r].clone()?;
+            if r != i {
+                out.iterations = 0;
+            }
+            Some(out)
+        })
+        .collect();
+    let skipped = near.len() - results.len();
+    (results, near.iter().map(|r| r.iterations).sum(), skipped)
+}
+
+/// The multistart search of the most (`maximize = false`) or least uniform form on
+/// `model`, from the whitened basis forms `basis` (the lowest-energy
+/// [`FormSearchOptions::basis_starts`] of them, by `basis_energy` when known, else
+/// evaluated) and the seeded random starts. With a
+/// `coarse` model (a sample of the faces, `faces.rs`), each start descends on it first
+/// and its optimum is then polished on `model`: the full Newton steps, `O(F n²)` each,
+/// are spent only near an optimum, where Newton converges in a few.
+pub fn multistart<M: EnergyModel + ?Sized>(
+    model: &M,
+    coarse: Option<&dyn EnergyModel>,
+    basis: &[Vec<f64>],
+    basis_energy: Option<&[f64]>,
     maximize: bool,
     options: &FormSearchOptions,
 ) -> UniformSearch {
     let t = Instant::now();
-    let n = p.n;
-    let mut starts: Vec<Vec<f64>> = (0..n)
-        .map(|k| {
-            let mut e = vec![0.0; n];
-            e[k] = 1.0;
-            p.whiten(&e)
-        })
-        .collect();
-    if let Some(keep) = options.basis_starts.filter(|&k| k < n) {
+    let n = model.dim();
+    let mut starts: Vec<Vec<f64>> = basis.to_vec();
+    if let Some(keep) = options.basis_starts.filter(|&k| k < starts.len()) {
         let sign = if maximize { -1.0 } else { 1.0 };
-        let value: Vec<f64> = starts.iter().map(|s| sign * moments.energy(s)).collect();
-        let mut order: Vec<usize> = (0..n).collect();
+        let value: Vec<f64> = match basis_energy {
+            Some(e) => e.iter().map(|x| sign * x).collect(),
+            None => starts.iter().map(|s| sign * model.energy(s)).collect(),
+        };
+        let mut order: Vec<usize> = (0..starts.len()).collect();
         order.sort_by(|&a, &b| value[a].total_cmp(&value[b]).then(a.cmp(&b)));
         starts = order[..keep.max(1)]
             .iter()
@@ -179,10 +250,16 @@ pub fn multistart(
             .collect();
     }
     starts.extend(random_directions(n, options.starts, options.seed));
-    let results: Vec<LocalOptimum> = starts
-        .par_iter()
-        .map(|s| local_search(moments, s, maximize))
-        .collect();
+    let (results, coarse_iterations, unpolished) = match coarse {
+        Some(c) => two_level(model, c, &starts, maximize),
+        None => {
+            let results: Vec<LocalOptimum> = starts
+                .par_iter()
+                .map(|s| local_search(model, s, maximize))
+                .collect();
+            (results, 0, 0)
+        }
+    };
     let better = |a: f64, b: f64| if maximize { a > b } else { a < b };
     let mut energies: Vec<f64> = results.iter().map(|r| r.energy).collect();
     energies.sort_by(|a, b| {
@@ -222,6 +299,8 @@ pub fn multistart(
         iterations_total: results.iter().map(|r| r.iterations).sum(),
         iterations_max: results.iter().map(|r| r.iterations).max().unwrap_or(0),
         unconverged: results.iter().filter(|r| !r.converged).count(),
+        coarse_iterations,
+        unpolished,
         time_ms: t.elapsed().as_secs_f64() * 1e3,
         mu: best,
     }

@@ -11,11 +11,15 @@
 //! - `∇²E = 8 Σ (u_f − a_f μ)(u_f − a_f μ)ᵀ + 4 Σ r_f Q̃_f − 8 (R μᵀ + μ Rᵀ) − 4ρ I
 //!   + 16 ρ μ μᵀ`.
 //!
-//! Each evaluation reads the moments of `moments.rs` only (`n⁴` flops, `n = 2g`), never
-//! the faces; [`energy`] is the direct one-pass sum, kept for reports and tests.
+//! Each evaluation reads an [`EnergyModel`]: the moments of `moments.rs` (`n⁴` flops,
+//! `n = 2g`, never the faces) or the direct face sums of `faces.rs` (`O(F n²)`), whichever
+//! `faces::use_moments` finds cheaper; `energy` (tests only) is the one-pass sum over the
+//! area forms of `products.rs`, an independent check.
 
 use crate::forms::dense::symmetric_eigen;
+use crate::forms::optimal::faces::FaceForms;
 use crate::forms::optimal::moments::{Aggregates, Moments};
+#[cfg(test)]
 use crate::forms::optimal::products::AreaProducts;
 
 /// The search stops when `|∇E| ≤ GRADIENT_TOL · E`. Default `1e-9`: Newton converges
@@ -61,7 +65,9 @@ pub struct Evaluation {
     pub hessian: Vec<f64>,
 }
 
-/// `E(μ)` for `μ ≠ 0` (any length: the energy is scale-free).
+/// `E(μ)` for `μ ≠ 0` (any length: the energy is scale-free), summed over the area forms
+/// (the independent check of the tests).
+#[cfg(test)]
 pub fn energy(p: &AreaProducts, mu: &[f64]) -> f64 {
     let n = p.n;
     let norm2: f64 = mu.iter().map(|x| x * x).sum();
@@ -78,9 +84,53 @@ pub fn energy(p: &AreaProducts, mu: &[f64]) -> f64 {
     e
 }
 
-/// Energy, gradient and Hessian at a unit `μ`, from the moments (no pass over the faces).
-pub fn evaluate(moments: &Moments, mu: &[f64]) -> Evaluation {
-    let n = moments.n;
+/// What a Newton search needs of the energy: its value anywhere and its aggregates (for
+/// the gradient and Hessian) at unit points. Two models: the moments of `moments.rs` and
+/// the direct face sums of `faces.rs`, picked by `faces::use_moments`.
+pub trait EnergyModel: Sync {
+    /// `2g`.
+    fn dim(&self) -> usize;
+    /// `Σ s_f²`: the energy's scale, for rounding-level tolerances (see [`ROUNDING`]).
+    fn scale(&self) -> f64;
+    /// `E(μ)` for `μ ≠ 0` (any length).
+    fn energy(&self, mu: &[f64]) -> f64;
+    /// The sums of [`Aggregates`] at a unit `μ`.
+    fn aggregates(&self, mu: &[f64]) -> Aggregates;
+}
+
+impl EnergyModel for Moments {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn scale(&self) -> f64 {
+        Moments::scale(self)
+    }
+    fn energy(&self, mu: &[f64]) -> f64 {
+        Moments::energy(self, mu)
+    }
+    fn aggregates(&self, mu: &[f64]) -> Aggregates {
+        Moments::aggregates(self, mu)
+    }
+}
+
+impl EnergyModel for FaceForms {
+    fn dim(&self) -> usize {
+        self.n
+    }
+    fn scale(&self) -> f64 {
+        self.weight * self.s.iter().map(|s| s * s).sum::<f64>()
+    }
+    fn energy(&self, mu: &[f64]) -> f64 {
+        FaceForms::energy(self, mu)
+    }
+    fn aggregates(&self, mu: &[f64]) -> Aggregates {
+        FaceForms::aggregates(self, mu)
+    }
+}
+
+/// Energy, gradient and Hessian at a unit `μ`, from the model's aggregates.
+pub fn evaluate<M: EnergyModel + ?Sized>(model: &M, mu: &[f64]) -> Evaluation {
+    let n = model.dim();
     let nn = n * n;
     let Aggregates {
         energy: e,
@@ -90,7 +140,7 @@ pub fn evaluate(moments: &Moments, mu: &[f64]) -> Evaluation {
         au,
         uu,
         rq,
-    } = moments.aggregates(mu);
+    } = model.aggregates(mu);
     let gradient: Vec<f64> = (0..n).map(|i| 4.0 * (big_r[i] - rho * mu[i])).collect();
     let mut hessian = vec![0.0; nn];
     for i in 0..n {
@@ -134,8 +184,12 @@ fn normalized(v: &[f64]) -> Vec<f64> {
 /// minimizing `−E`). The step solves with `|P H P|` (eigenvalues in absolute value,
 /// floored), `P = I − μμᵀ`, restricted to the tangent space; retraction by normalization,
 /// Armijo backtracking.
-pub fn local_search(moments: &Moments, start: &[f64], maximize: bool) -> LocalOptimum {
-    let n = moments.n;
+pub fn local_search<M: EnergyModel + ?Sized>(
+    moments: &M,
+    start: &[f64],
+    maximize: bool,
+) -> LocalOptimum {
+    let n = moments.dim();
     // the gradient test, floored at rounding level of the moments' terms (see `ROUNDING`)
     let tol = |e: f64| GRADIENT_TOL * e.max(ROUNDING * moments.scale());
     let sign = if maximize { -1.0 } else { 1.0 };
