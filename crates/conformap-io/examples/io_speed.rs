@@ -7,7 +7,8 @@
 //! Per file: `parse` = `read_raw_mesh` (bytes from the page cache, parsed, not validated),
 //! `read` = `read_mesh` (the same plus `TriMesh::try_new`), `write obj` / `write glb` =
 //! `write_mesh_with_uv` with a texture coordinate per vertex (the shape of `conformap
-//! disk`'s output). MB/s are of the input file for reading and of the output file for
+//! disk`'s output); `write obj, numbers copied` = the same with the file's `SourceInfo`,
+//! whose vertex numbers are copied as written (what `conformap disk` does). MB/s are of the input file for reading and of the output file for
 //! writing (1 MB = 10⁶ bytes).
 
 use std::time::Instant;
@@ -32,8 +33,8 @@ fn time(mut f: impl FnMut()) -> f64 {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    println!("| file | MB | parse ms | parse MB/s | read ms | read MB/s | write obj ms | obj MB | write obj MB/s | write glb ms | write glb MB/s |");
-    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    println!("| file | MB | parse ms | parse MB/s | read ms | read MB/s | write obj ms | obj MB | write obj MB/s | write obj, numbers copied ms | MB/s | write glb ms | write glb MB/s |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     let dir = std::env::temp_dir().join(format!("conformap-io-speed-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     for arg in std::env::args().skip(1) {
@@ -62,6 +63,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ));
         });
         let obj_mb = std::fs::metadata(&obj)?.len() as f64 / 1e6;
+        // the same with the file's source: the vertices' numbers copied, not formatted
+        let wobj_src = time(|| {
+            let _ = std::hint::black_box(conformap_io::write_mesh_with_uv(
+                &obj,
+                &loaded.mesh,
+                &uv,
+                Some(&loaded.source),
+            ));
+        });
         let wglb = time(|| {
             let _ = std::hint::black_box(conformap_io::write_mesh_with_uv(
                 &glb,
@@ -75,8 +85,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .file_name()
             .map_or(arg.clone(), |n| n.to_string_lossy().into_owned());
         println!(
-            "| {name} | {mb:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {obj_mb:.1} | {:.0} | {:.0} | {:.0} |",
-            parse * 1e3, mb / parse, read * 1e3, mb / read, wobj * 1e3, obj_mb / wobj, wglb * 1e3, glb_mb / wglb
+            "| {name} | {mb:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {obj_mb:.1} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} |",
+            parse * 1e3, mb / parse, read * 1e3, mb / read, wobj * 1e3, obj_mb / wobj, wobj_src * 1e3, obj_mb / wobj_src, wglb * 1e3, glb_mb / wglb
         );
     }
     std::fs::remove_dir_all(&dir)?;
