@@ -46,9 +46,11 @@ pub(crate) fn run(
             Some(m) => Some((m, "max_memory")),
             None => available_memory(),
         };
+        // arrays from numpy: nothing read, no file text kept
         let memory = MemoryCheck {
             read_estimate: 0,
             estimate: 0,
+            file_bytes: 0,
             limit,
         };
         let (solved, report) = solve_and_report(cmd, input, memory, 0.0)?;

@@ -24,7 +24,6 @@ use std::collections::HashMap;
 
 use num_complex::Complex64;
 
-use crate::quality::face_normal;
 use crate::Location;
 
 /// A key surface's loop matches an S1 loop only when the mean distance (in S1's disk)
@@ -48,35 +47,10 @@ pub const CREASE_LOOP_MATCH_REL: f64 = 0.5;
 /// assert!(crease_loops(&p, &f, 90.0).is_empty());
 /// ```
 pub fn crease_loops(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) -> Vec<Vec<u32>> {
-    let cos = angle_deg.to_radians().cos();
-    let unit: Vec<[f64; 3]> = faces
-        .iter()
-        .map(|f| {
-            let n = face_normal(positions, f);
-            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-            if l > 0.0 {
-                [n[0] / l, n[1] / l, n[2] / l]
-            } else {
-                n
-            }
-        })
-        .collect();
-    let mut edge_faces: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (k, t) in faces.iter().enumerate() {
-        for e in 0..3 {
-            let (a, b) = (t[e], t[(e + 1) % 3]);
-            edge_faces.entry((a.min(b), a.max(b))).or_default().push(k);
-        }
-    }
     let mut adjacent: HashMap<u32, Vec<u32>> = HashMap::new();
-    for (&(a, b), list) in &edge_faces {
-        if let [f, g] = list[..] {
-            let (u, v) = (unit[f], unit[g]);
-            if u[0] * v[0] + u[1] * v[1] + u[2] * v[2] < cos {
-                adjacent.entry(a).or_default().push(b);
-                adjacent.entry(b).or_default().push(a);
-            }
-        }
+    for (a, b) in crate::quality::crease_edges(positions, faces, angle_deg) {
+        adjacent.entry(a).or_default().push(b);
+        adjacent.entry(b).or_default().push(a);
     }
     let mut starts: Vec<u32> = adjacent.keys().copied().collect();
     starts.sort_unstable();

@@ -113,9 +113,9 @@ pub fn flipped_at_vertices(
         .collect()
 }
 
-/// Faces at a crease: every face with a vertex on an edge whose two faces' normals turn
-/// by more than `angle_deg` degrees (e.g. [`CREASE_ANGLE_DEG`]). One flag per face.
-pub fn crease_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) -> Vec<bool> {
+/// The crease edges of a mesh: interior edges `(a, b)`, `a < b`, whose two faces' normals
+/// turn by more than `angle_deg` degrees, sorted.
+pub fn crease_edges(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) -> Vec<(u32, u32)> {
     let cos = angle_deg.to_radians().cos();
     let unit: Vec<[f64; 3]> = faces
         .iter()
@@ -136,6 +136,20 @@ pub fn crease_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) 
             edge_faces.entry((a.min(b), a.max(b))).or_default().push(k);
         }
     }
+    let mut out: Vec<(u32, u32)> = edge_faces
+        .into_iter()
+        .filter_map(|(edge, list)| match list[..] {
+            [f, g] if dot(unit[f], unit[g]) < cos => Some(edge),
+            _ => None,
+        })
+        .collect();
+    out.sort_unstable();
+    out
+}
+
+/// Faces at a crease: every face with a vertex on an edge whose two faces' normals turn
+/// by more than `angle_deg` degrees (e.g. [`CREASE_ANGLE_DEG`]). One flag per face.
+pub fn crease_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) -> Vec<bool> {
     let nv = faces
         .iter()
         .flat_map(|f| f.iter())
@@ -143,13 +157,9 @@ pub fn crease_faces(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) 
         .max()
         .unwrap_or(0);
     let mut on_crease = vec![false; nv];
-    for (&(a, b), list) in &edge_faces {
-        if let [f, g] = list[..] {
-            if dot(unit[f], unit[g]) < cos {
-                on_crease[a as usize] = true;
-                on_crease[b as usize] = true;
-            }
-        }
+    for (a, b) in crease_edges(positions, faces, angle_deg) {
+        on_crease[a as usize] = true;
+        on_crease[b as usize] = true;
     }
     faces
         .iter()
