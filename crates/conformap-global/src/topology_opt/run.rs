@@ -343,6 +343,21 @@ fn start(
             crate::stereo::dot(a, crate::stereo::cross(b, c)) <= 0.0
         })
         .count();
+    let factor_ms = map.report.timings_ms.factor;
+    let measured = start_measured(mesh, image, shares, inverted, ms(t), factor_ms);
+    Ok((measured, BestLayout::Sphere(best.points)))
+}
+
+/// Step 0 of the loop: the starting map (sphere or disk) with no slit, its image areas
+/// `image` and `folded` faces.
+fn start_measured(
+    mesh: &TriMesh,
+    image: Vec<f64>,
+    shares: &[f64],
+    folded: usize,
+    time_ms: f64,
+    factor_ms: f64,
+) -> Measured {
     let step = TopologyStep {
         added: Vec::new(),
         slits: 0,
@@ -351,24 +366,20 @@ fn start(
         ratio_to_start: 1.0,
         area_distortion_log: area_stats(&image, shares),
         folds_at_zeros: 0,
-        folds_outside_zeros: inverted,
-        time_ms: ms(t),
-        factor_ms: map.report.timings_ms.factor,
+        folds_outside_zeros: folded,
+        time_ms,
+        factor_ms,
         objective_ms: 0.0,
         energy_model: String::new(),
         newton_iterations: 0,
         coarse_iterations: 0,
         stages_ms: crate::GlobalTimings::default(),
     };
-    let excluded = vec![false; mesh.num_vertices()];
-    Ok((
-        Measured {
-            image,
-            excluded,
-            step,
-        },
-        BestLayout::Sphere(best.points),
-    ))
+    Measured {
+        image,
+        excluded: vec![false; mesh.num_vertices()],
+        step,
+    }
 }
 
 /// The starting map of a disk: the default disk map (CCEM with BFGS, flip-free) moved by
@@ -384,32 +395,9 @@ fn start_disk(mesh: &TriMesh, shares: &[f64]) -> Result<(Measured, BestLayout), 
     )?;
     let image = planar_face_areas(mesh, &best.map);
     let folded = image.iter().filter(|a| **a <= 0.0).count();
-    let step = TopologyStep {
-        added: Vec::new(),
-        slits: 0,
-        surface_genus: 0,
-        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
-        ratio_to_start: 1.0,
-        area_distortion_log: area_stats(&image, shares),
-        folds_at_zeros: 0,
-        folds_outside_zeros: folded,
-        time_ms: ms(t),
-        factor_ms: disk.report.timings_ms.factor,
-        objective_ms: 0.0,
-        energy_model: String::new(),
-        newton_iterations: 0,
-        coarse_iterations: 0,
-        stages_ms: crate::GlobalTimings::default(),
-    };
-    let excluded = vec![false; mesh.num_vertices()];
-    Ok((
-        Measured {
-            image,
-            excluded,
-            step,
-        },
-        BestLayout::Disk(best.map),
-    ))
+    let factor_ms = disk.report.timings_ms.factor;
+    let measured = start_measured(mesh, image, shares, folded, ms(t), factor_ms);
+    Ok((measured, BestLayout::Disk(best.map)))
 }
 
 /// Topological optimization (Jin et al. 2004, §3.5): starting from the uniformity-optimal
