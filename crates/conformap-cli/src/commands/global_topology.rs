@@ -139,17 +139,23 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
     Ok(solved)
 }
 
+/// The solver section of a returned starting map: the uniformity energy of every step,
+/// step 0 being the `start` (sphere or disk) map.
+fn step_history(r: &TopologyOpt, start: &str) -> SolverSection {
+    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
+    SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
+        "energy_history_is",
+        format!("uniformity energy of each step (step 0: the {start} map)"),
+    )
+}
+
 /// The starting sphere map, as `sphere --mobius uniform` writes it.
 fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let t = std::time::Instant::now();
     let m = sphere_metrics(mesh, points).map_err(|e| input.fail(e.into()))?;
     let metrics_ms = crate::report::ms_since(t);
-    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
-    let solver = SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
-        "energy_history_is",
-        "uniformity energy of each step (step 0: the sphere map)",
-    );
+    let solver = step_history(r, "sphere");
     let summary = format!(
         "{} vertices, {} faces; uniform-Möbius sphere map (mean angle distortion {:.3}°, \
          inverted faces {}, uniformity {:.3e})",
@@ -194,11 +200,7 @@ fn disk_solved(
     let t = std::time::Instant::now();
     let base = planar_map_metrics(mesh, map, &MetricsOptions::default())?;
     let metrics_ms = crate::report::ms_since(t);
-    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
-    let solver = SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
-        "energy_history_is",
-        "uniformity energy of each step (step 0: the disk map)",
-    );
+    let solver = step_history(r, "disk");
     let summary = format!(
         "{} vertices, {} faces; uniform-Möbius disk map (mean angle distortion {:.3}°, \
          flipped faces {}, uniformity {:.3e})",
