@@ -112,7 +112,18 @@ impl TriMesh {
             || count_components(n, &faces),
         );
         checked?;
-        let opposite = opposite?;
+        // a duplicate face outranks the edge errors: with a valid matching the duplicates
+        // are found from it; after an edge error, by the sort of every face's vertex set
+        let opposite = match opposite {
+            Ok(opposite) => {
+                duplicate_pairs(&opposite)?;
+                opposite
+            }
+            Err(e) => {
+                duplicate_faces(n, &faces)?;
+                return Err(e);
+            }
+        };
         let (is_boundary, boundary_loops) = check_fans_and_loops(n, &faces, &opposite)?;
         let edge_count = opposite
             .iter()
@@ -496,8 +507,8 @@ fn degenerate(
     Ok(())
 }
 
-/// Degenerate faces, unreferenced vertices and duplicate faces of faces whose indices
-/// [`check_indices`] accepted.
+/// Degenerate faces and unreferenced vertices of faces whose indices [`check_indices`]
+/// accepted (duplicate faces: [`duplicate_pairs`], [`duplicate_faces`]).
 fn check_faces(
     positions: &[[f64; 3]],
     faces: &[[u32; 3]],
@@ -516,7 +527,14 @@ fn check_faces(
         let count = referenced.iter().filter(|r| !**r).count();
         return Err(MeshError::UnreferencedVertex { vertex, count });
     }
-    // duplicate faces: same vertex set, whatever the order; grouped by smallest vertex
+    Ok(())
+}
+
+/// [`MeshError::DuplicateFace`] for two faces with the same vertex set, whatever the
+/// order: of all such pairs (the second and first face of each set in face order), the
+/// one whose second face comes first.
+fn duplicate_faces(n: usize, faces: &[[u32; 3]]) -> Result<(), MeshError> {
+    // grouped by smallest vertex
     let (sorted, offsets) = sort_by_bucket(
         n,
         faces.len(),
@@ -544,6 +562,31 @@ fn check_faces(
     Ok(())
 }
 
+/// [`duplicate_faces`] of faces whose half-edges matched without error (no edge of more
+/// than two faces, opposite half-edges run opposite ways): two faces share their vertex
+/// set exactly when the three opposites of one lie in the other, and no set then has a
+/// third face, so the pairs are found without sorting (the same error as
+/// [`duplicate_faces`] reports).
+fn duplicate_pairs(opposite: &[u32]) -> Result<(), MeshError> {
+    let dup = opposite
+        .chunks_exact(3)
+        .enumerate()
+        .filter_map(|(f, o)| {
+            let g = o[0] / 3;
+            (o[0] != NO_HALFEDGE
+                && o[1] / 3 == g
+                && o[2] / 3 == g
+                && o[1] != NO_HALFEDGE
+                && o[2] != NO_HALFEDGE)
+                .then(|| (f.max(g as usize), f.min(g as usize)))
+        })
+        .min();
+    match dup {
+        Some((face, first)) => Err(MeshError::DuplicateFace { face, first }),
+        None => Ok(()),
+    }
+}
+
 /// Sorts `(bucket, rest)` items by bucket (a counting sort: buckets are vertex indices
 /// below `n`) and then by `rest` within each bucket, which orders them exactly as a full
 /// sort of `(bucket, rest)` would, in linear time plus sorts of a few items each. Returns
@@ -560,11 +603,16 @@ fn sort_by_bucket<T: Ord + Copy + Default>(
     for i in 0..n {
         offsets[i + 1] += offsets[i];
     }
-    let mut fill = offsets.clone();
     let mut sorted = vec![T::default(); len];
+    // `offsets[b]` is the next free place of bucket `b` while filling, so it ends as the
+    // start of bucket `b + 1`: shifted back by one place afterwards (no second array)
     for (b, rest) in items {
-        sorted[fill[b as usize]] = rest;
-        fill[b as usize] += 1;
+        sorted[offsets[b as usize]] = rest;
+        offsets[b as usize] += 1;
+    }
+    if n > 0 {
+        offsets.copy_within(0..n - 1, 1);
+        offsets[0] = 0;
     }
     for w in offsets.windows(2) {
         sorted[w[0]..w[1]].sort_unstable();

@@ -119,6 +119,27 @@ fn duplicate_face_names_both() {
     );
 }
 
+/// A copy turned over (the same vertex set, the other orientation) matches every edge of
+/// the face it copies: found from the matching, the same error as a copy in the same
+/// orientation, with the earliest such pair named.
+#[test]
+fn duplicate_face_turned_over_names_both() {
+    // two triangles glued along all three edges (a closed two-face surface) ...
+    let p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    assert_eq!(
+        TriMesh::try_new(p.clone(), vec![[0, 1, 2], [0, 2, 1]]).unwrap_err(),
+        MeshError::DuplicateFace { face: 1, first: 0 }
+    );
+    // ... and a turned-over copy of a face of a larger mesh (the edge it shares with face
+    // 0 then has three faces, an edge error, which the duplicate still outranks)
+    let (p, mut f) = square();
+    f.push([f[1][0], f[1][2], f[1][1]]);
+    assert_eq!(
+        TriMesh::try_new(p, f).unwrap_err(),
+        MeshError::DuplicateFace { face: 2, first: 1 }
+    );
+}
+
 #[test]
 fn unreferenced_vertex_is_counted() {
     let (mut p, f) = square();
