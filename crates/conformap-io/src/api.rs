@@ -4,7 +4,7 @@ use std::path::Path;
 
 use conformap_mesh::TriMesh;
 
-use crate::atomic::{write_atomically, write_parts_atomically};
+use crate::atomic::{write_atomically, write_encoded_atomically};
 use crate::error::{IoError, WriteProblem};
 use crate::gltffile::encode_gltf;
 use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
@@ -85,8 +85,8 @@ pub fn write_mesh_with_uv(
     match format {
         Format::Obj => {
             let text = source.and_then(|s| s.vertex_text.as_deref());
-            let parts = encode_obj_with_uv(mesh.positions(), uv, mesh.faces(), text);
-            write_parts_atomically(path, &parts)
+            let encoded = encode_obj_with_uv(mesh.positions(), uv, mesh.faces(), text);
+            write_encoded_atomically(path, &encoded)
         }
         Format::Gltf | Format::Glb => {
             let binary = format == Format::Glb;
@@ -135,7 +135,7 @@ pub fn write_flat(
     }
     check_finite(points.iter().map(|p| p.as_slice())).map_err(bad)?;
     match format {
-        Format::Obj => write_parts_atomically(path, &encode_obj(points, faces)),
+        Format::Obj => write_encoded_atomically(path, &encode_obj(points, faces)),
         Format::Gltf | Format::Glb => {
             let bytes = encode_gltf(format == Format::Glb, points, None, faces).map_err(bad)?;
             write_atomically(path, &bytes)

@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::IoError;
+use crate::objfile::Encoded;
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
@@ -23,24 +24,27 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// # Errors
 /// [`IoError::Write`] if the temporary file cannot be created, written or renamed.
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
-    write_parts_atomically(path, &[bytes])
+    write_with_atomically(path, |file| file.write_all(bytes))
 }
 
-/// [`write_atomically`] of the concatenation of `parts` (formatted in parallel blocks),
-/// without joining them in memory first: each part is one `write` of the file.
+/// [`write_atomically`] of an OBJ text formatted as it is written (see
+/// [`Encoded::write_to`]).
 ///
 /// # Errors
 /// As [`write_atomically`].
-pub(crate) fn write_parts_atomically<B: AsRef<[u8]>>(
+pub(crate) fn write_encoded_atomically(path: &Path, text: &Encoded<'_>) -> Result<(), IoError> {
+    write_with_atomically(path, |file| text.write_to(file))
+}
+
+/// [`write_atomically`] of whatever `write` writes to the file.
+fn write_with_atomically(
     path: &Path,
-    parts: &[B],
+    write: impl FnOnce(&mut fs::File) -> std::io::Result<()>,
 ) -> Result<(), IoError> {
     let tmp = temp_sibling(path);
     let result = (|| {
         let mut file = fs::File::create(&tmp)?;
-        for part in parts {
-            file.write_all(part.as_ref())?;
-        }
+        write(&mut file)?;
         drop(file);
         fs::rename(&tmp, path)
     })();

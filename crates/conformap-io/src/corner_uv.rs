@@ -7,7 +7,7 @@ use std::path::Path;
 use conformap_mesh::TriMesh;
 
 use crate::api::write_target;
-use crate::atomic::{write_atomically, write_parts_atomically};
+use crate::atomic::{write_atomically, write_encoded_atomically};
 use crate::error::{IoError, WriteProblem};
 use crate::gltffile::encode_gltf;
 use crate::loaded::Format;
@@ -134,9 +134,9 @@ pub fn write_mesh_with_corner_uv(
     uv.check(mesh.num_faces()).map_err(bad)?;
     match format {
         Format::Obj => {
-            let parts =
+            let encoded =
                 encode_obj_with_corner_uv(mesh.positions(), &uv.texcoords, mesh.faces(), &uv.faces);
-            write_parts_atomically(path, &parts)
+            write_encoded_atomically(path, &encoded)
         }
         Format::Gltf | Format::Glb => {
             let (pairs, faces) = uv.split(mesh.faces());

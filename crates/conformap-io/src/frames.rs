@@ -69,7 +69,7 @@ impl ObjFrames {
         }
         check_finite(points.iter().map(|p| p.as_slice()))?;
         let header = obj_header(points.len(), self.face_count);
-        let vertices = vertex_lines(points);
+        let vertices = vertex_lines(points).parts();
         let size =
             header.len() + vertices.iter().map(Vec::len).sum::<usize>() + self.face_text.len();
         let mut out = Vec::with_capacity(size);

@@ -178,7 +178,10 @@ impl VertexText {
         p.iter().all(|&x| {
             words
                 .next()
-                .and_then(|w| fast_float2::parse::<f64, _>(w).ok())
+                .and_then(|w| match crate::objfile::decimal(w) {
+                    Some((y, len)) if len == w.len() => Some(y),
+                    _ => fast_float2::parse::<f64, _>(w).ok(),
+                })
                 .is_some_and(|y| y.to_bits() == x.to_bits())
         }) && words.next().is_none()
     }

@@ -217,6 +217,8 @@ impl Sink<'_> {
 pub(crate) struct ChunkOutcome {
     /// Point, line and free-form statements ignored.
     pub(crate) noted: usize,
+    /// Triangles written.
+    pub(crate) triangles: usize,
     /// The chunk's first offending line; parsing stops there.
     pub(crate) error: Option<(usize, ObjProblem)>,
 }
@@ -239,7 +241,54 @@ fn next_word<'a>(s: &mut &'a [u8]) -> Option<&'a [u8]> {
 }
 
 /// The first pass: lines and element counts of a chunk.
-pub(crate) fn count(chunk: &[u8]) -> Counts {
+///
+/// With `exact` false, an `f` line of a chunk without continued lines counts as one
+/// triangle without reading its corners (a guess, right for triangle meshes): the parse
+/// of a line with more corners then finds its chunk's room too small
+/// ([`ObjProblem::Miscounted`]) and the reader counts again, exactly (see
+/// [`super::read`]).
+pub(crate) fn count(chunk: &[u8], exact: bool) -> Counts {
+    count_plain(chunk, exact).unwrap_or_else(|| count_general(chunk))
+}
+
+/// [`count`] of a chunk without line continuations, one scan of each line's ends and
+/// first bytes (and, if `exact`, of an `f` line's corners); `None` when a line
+/// continues, for [`count_general`] to count.
+fn count_plain(chunk: &[u8], exact: bool) -> Option<Counts> {
+    let mut c = Counts::default();
+    let mut pos = 0;
+    while pos < chunk.len() {
+        let rest = &chunk[pos..];
+        let (line, next) = match memchr::memchr2(b'\n', b'\r', rest) {
+            Some(i) => {
+                let crlf = rest[i] == b'\r' && rest.get(i + 1) == Some(&b'\n');
+                (&rest[..i], i + 1 + usize::from(crlf))
+            }
+            None => (rest, rest.len()),
+        };
+        pos += next;
+        c.lines += 1;
+        // a `\` as the last non-blank character may continue the line
+        if line.iter().rev().find(|&&b| !is_blank(b)) == Some(&b'\\') {
+            return None;
+        }
+        let Some((keyword, rest)) = split_keyword(line) else {
+            continue;
+        };
+        match keyword {
+            b"v" => c.v += 1,
+            b"vt" => c.vt += 1,
+            b"vn" => c.vn += 1,
+            b"f" if exact => c.tri += words(rest).saturating_sub(2),
+            b"f" => c.tri += 1,
+            _ => {}
+        }
+    }
+    Some(c)
+}
+
+/// [`count`] through the logical lines (continuations joined).
+fn count_general(chunk: &[u8]) -> Counts {
     let mut c = Counts::default();
     let mut lines = Lines::new(chunk);
     for line in lines.by_ref() {
@@ -257,14 +306,13 @@ pub(crate) fn count(chunk: &[u8]) -> Counts {
 
 /// Blank-separated words of `s` (the corners of an `f` statement).
 fn words(s: &[u8]) -> usize {
-    let mut n = 0;
-    let mut in_word = false;
-    for &b in s {
-        let word = !is_blank(b);
-        n += usize::from(word && !in_word);
-        in_word = word;
-    }
-    n
+    // a word starts at a non-blank byte after a blank one (or at the start)
+    let first = s.first().is_some_and(|&b| !is_blank(b));
+    let later = s
+        .windows(2)
+        .filter(|w| is_blank(w[0]) && !is_blank(w[1]))
+        .count();
+    usize::from(first) + later
 }
 
 /// Parses a chunk into `sink` (room for exactly its elements: [`Parsed::sinks`] with the
@@ -300,6 +348,7 @@ pub(crate) fn parse_into(
         }
     }
     out.noted = sink.noted;
+    out.triangles = sink.nf;
     out
 }
 
@@ -307,7 +356,7 @@ pub(crate) fn parse_into(
 /// chunked reader with.
 #[cfg(test)]
 pub(crate) fn parse_text(text: &[u8]) -> Parsed {
-    let total = count(text);
+    let total = count(text, true);
     let mut whole = Parsed::with_counts(total);
     let outcome = {
         let mut sinks = whole.sinks(&[total]);
@@ -375,6 +424,9 @@ fn statement(
             seen.vn += 1;
         }
         b"f" => {
+            if let Some(f) = fast_triangle(rest, total.v) {
+                return p.triangle(f, [NO_UV; 3], lineno);
+            }
             corners.clear();
             if !fast_corners(rest, *seen, total, corners)? {
                 corners.clear();
@@ -461,7 +513,10 @@ fn fast_floats<const N: usize>(s: &[u8]) -> Option<([f64; N], (usize, usize))> {
     for slot in &mut out {
         rest = skip_blanks(rest);
         start.get_or_insert(s.len() - rest.len());
-        let (x, len) = fast_float2::parse_partial::<f64, _>(rest).ok()?;
+        let (x, len) = match decimal(rest) {
+            Some(read) => read,
+            None => fast_float2::parse_partial::<f64, _>(rest).ok()?,
+        };
         rest = &rest[len..];
         if rest.first().is_some_and(|&b| !is_blank(b)) {
             return None;
@@ -472,6 +527,50 @@ fn fast_floats<const N: usize>(s: &[u8]) -> Option<([f64; N], (usize, usize))> {
     rest.iter()
         .all(|&b| is_blank(b))
         .then_some((out, (start.unwrap_or(end), end)))
+}
+
+/// Powers of ten exactly representable as f64.
+const EXACT_POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The common number of a mesh file, `[-]digits[.digits]` of at most 15 significant
+/// digits, at the start of `s`: its value and length, `None` for anything else (an
+/// exponent, more digits, `inf`...) or when the number goes on (`fast-float2` then reads
+/// it). Correctly rounded: the digits form an integer below 2^53 and the divisor is a power
+/// of ten below 10^23, both exact in f64, and one IEEE division rounds correctly
+/// (Clinger's fast path, as `fast-float2` takes it too, without its general set-up).
+pub(crate) fn decimal(s: &[u8]) -> Option<(f64, usize)> {
+    let negative = s.first() == Some(&b'-');
+    let mut i = usize::from(negative);
+    let int_start = i;
+    let mut m: u64 = 0;
+    // wrapping: a value of more than 15 digits is refused below
+    while let Some(&d) = s.get(i).filter(|d| d.is_ascii_digit()) {
+        m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
+        i += 1;
+    }
+    let int_digits = i - int_start;
+    if int_digits == 0 {
+        return None;
+    }
+    let mut scale = 0;
+    if s.get(i) == Some(&b'.') {
+        i += 1;
+        let frac_start = i;
+        while let Some(&d) = s.get(i).filter(|d| d.is_ascii_digit()) {
+            m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
+            i += 1;
+        }
+        scale = i - frac_start;
+    }
+    // 15 digits keep m below 10^15 < 2^53 (leading zeros count too: a safe bound)
+    if int_digits + scale > 15 || s.get(i).is_some_and(|&b| !is_blank(b)) {
+        return None;
+    }
+    let x = m as f64 / EXACT_POWERS_OF_TEN[scale];
+    Some((if negative { -x } else { x }, i))
 }
 
 /// An optionally signed decimal integer at the start of `s`: its value and length, `None`
@@ -497,6 +596,36 @@ fn leading_int(s: &[u8]) -> Option<(i64, usize)> {
         return None;
     }
     Some((if negative { -x } else { x }, len))
+}
+
+/// The fastest path of an `f` line: exactly three positive vertex indices within the
+/// file's `total_v` vertices (`f 1 2 3`: no sign, no `/`), spaces or tabs before each and
+/// after the last; 0-based. `None` for anything else, which [`fast_corners`] or the
+/// general path then reads or reports; on the lines it accepts all give the same.
+fn fast_triangle(s: &[u8], total_v: usize) -> Option<[u32; 3]> {
+    let blank = |b: u8| b == b' ' || b == b'\t';
+    let mut out = [0u32; 3];
+    let mut i = 0;
+    for slot in &mut out {
+        if !blank(*s.get(i)?) {
+            return None;
+        }
+        while s.get(i).is_some_and(|&b| blank(b)) {
+            i += 1;
+        }
+        let start = i;
+        let mut x: u64 = 0;
+        // ten digits at most here (more than any u32 index); an eleventh steps aside
+        while let Some(&d) = s.get(i).filter(|d| d.is_ascii_digit() && i - start < 10) {
+            x = 10 * x + u64::from(d - b'0');
+            i += 1;
+        }
+        if i == start || s.get(i).is_some_and(|&b| !blank(b)) || x == 0 || x > total_v as u64 {
+            return None;
+        }
+        *slot = u32::try_from(x - 1).ok()?;
+    }
+    s[i..].iter().all(|&b| blank(b)).then_some(out)
 }
 
 /// The fast path of an `f` line: corners `v`, `v/vt`, `v//vn` or `v/vt/vn` read in one
@@ -733,6 +862,64 @@ mod tests {
         }
     }
 
+    /// The decimal fast path gives the bits of the standard library's correctly rounded
+    /// parse on every number it reads, and steps aside for the rest.
+    #[test]
+    fn decimals_round_like_the_standard_library() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |k: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % k
+        };
+        let mut read = 0;
+        for _ in 0..200_000 {
+            let mut t = String::new();
+            if next(2) == 0 {
+                t.push('-');
+            }
+            for _ in 0..=next(9) {
+                t.push(char::from(b'0' + next(10) as u8));
+            }
+            if next(4) != 0 {
+                t.push('.');
+                for _ in 0..next(18) {
+                    t.push(char::from(b'0' + next(10) as u8));
+                }
+            }
+            let want: f64 = t.parse().unwrap();
+            if let Some((x, len)) = decimal(t.as_bytes()) {
+                assert_eq!((x.to_bits(), len), (want.to_bits(), t.len()), "{t}");
+                read += 1;
+            }
+            // the same number followed by a blank, or by more of a number
+            let spaced = format!("{t} 1");
+            if let Some((x, len)) = decimal(spaced.as_bytes()) {
+                assert_eq!((x.to_bits(), len), (want.to_bits(), t.len()), "{t}");
+            }
+            assert!(decimal(format!("{t}e1").as_bytes()).is_none(), "{t}");
+        }
+        assert!(read > 100_000, "{read}");
+        for t in [
+            "9007199254740993",
+            "0.1234567890123456",
+            "1e5",
+            "inf",
+            ".5",
+            "-",
+            "+1",
+            "x",
+        ] {
+            assert!(decimal(t.as_bytes()).is_none(), "{t}");
+        }
+        assert_eq!(
+            decimal(b"-0.0").map(|(x, _)| x.to_bits()),
+            Some((-0.0f64).to_bits())
+        );
+        assert_eq!(decimal(b"7."), Some((7.0, 2)));
+    }
+
     /// The fast paths give exactly what the general path gives, or step aside: numbers and
     /// corners of every shape the general path accepts or rejects.
     #[test]
@@ -829,6 +1016,10 @@ mod tests {
                 let general: Result<Vec<_>, _> = std::iter::from_fn(|| next_word(&mut rest))
                     .map(|t| parse_corner(t, seen, total))
                     .collect();
+                if let Some(f) = fast_triangle(line.as_bytes(), total.v) {
+                    let want: Vec<_> = f.iter().map(|&v| (v, NO_UV)).collect();
+                    assert_eq!(Ok(want), general, "{line}");
+                }
                 match fast {
                     Ok(true) => assert_eq!(Ok(corners), general, "{line}"),
                     Ok(false) => {}
@@ -836,6 +1027,59 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The one-scan count agrees with the count through logical lines on every line
+    /// shape, and steps aside for a continued line.
+    #[test]
+    fn plain_count_agrees_with_the_general_count() {
+        let lines = [
+            "v 1 2 3",
+            "vt 0 1",
+            "vn 0 0 1",
+            "f 1 2 3",
+            "f 1/1 2/2 3/3 4/4",
+            "f\t1 2  3 ",
+            "  v 1 2 3",
+            "\tf 1 2 3 4 5",
+            "f 1",
+            "f",
+            "v",
+            "vt",
+            "vp 1 2",
+            "vertex 1 2 3",
+            "fo 1 2 3",
+            "# v 1 2 3",
+            "o f",
+            "g v",
+            "",
+            "   ",
+            "usemtl x",
+            "l 1 2",
+            "#",
+            "f 1 2 3 # tail",
+        ];
+        let ends = ["\n", "\r\n", "\r"];
+        for (i, a) in lines.iter().enumerate() {
+            for (j, b) in lines.iter().enumerate() {
+                let text = format!("{a}{}{b}{}", ends[i % 3], ends[j % 3]);
+                let bytes = text.as_bytes();
+                assert_eq!(
+                    count_plain(bytes, true),
+                    Some(count_general(bytes)),
+                    "{text:?}"
+                );
+                // without the last line end
+                let cut = &bytes[..bytes.len() - ends[j % 3].len()];
+                assert_eq!(count_plain(cut, true), Some(count_general(cut)), "{text:?}");
+            }
+        }
+        let continued = b"f 1 2 \\\n3\n";
+        assert_eq!(count_plain(continued, true), None);
+        assert_eq!(count(continued, false).tri, 1);
+        // a comment ending in `\` does not continue, but the plain count leaves it to
+        // the general one all the same
+        assert_eq!(count(b"# C:\\dir\\\nv 0 0 0\n", false).v, 1);
     }
 
     #[test]

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use super::lines::split_chunks;
 use super::parse::{count, parse_into, ChunkOutcome, Counts, Parsed, Sink, NO_UV};
 use crate::corner_uv::CornerUv;
-use crate::error::{IoError, Origin, UvProblem};
+use crate::error::{IoError, ObjProblem, Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
 use crate::raw::RawMesh;
 
@@ -35,18 +35,6 @@ pub(crate) fn read_obj_raw(
         CHUNKS_PER_THREAD * rayon::current_num_threads()
     };
     let chunks = split_chunks(text, n);
-    let counts: Vec<Counts> = if chunks.len() > 1 {
-        chunks.par_iter().map(|c| count(c)).collect()
-    } else {
-        chunks.iter().map(|c| count(c)).collect()
-    };
-    let total = counts.iter().fold(Counts::default(), |a, &c| a.add(c));
-    let mut before = Vec::with_capacity(counts.len());
-    let mut acc = Counts::default();
-    for &c in &counts {
-        before.push(acc);
-        acc = acc.add(c);
-    }
     // each chunk's byte offset in `bytes` (the chunks tile the text in order)
     let offsets: Vec<usize> = chunks
         .iter()
@@ -56,24 +44,13 @@ pub(crate) fn read_obj_raw(
             Some(start)
         })
         .collect();
-    let mut whole = Parsed::with_counts(total);
-    let outcomes: Vec<ChunkOutcome> = {
-        let sinks = whole.sinks(&counts);
-        let jobs = chunks.into_iter().zip(offsets).zip(before).zip(sinks);
-        let parse = |(((c, at), b), mut sink): (((&[u8], usize), Counts), Sink<'_>)| {
-            parse_into(c, at, b, total, &mut sink)
-        };
-        if counts.len() > 1 {
-            jobs.collect::<Vec<_>>()
-                .into_par_iter()
-                .map(parse)
-                .collect()
-        } else {
-            jobs.map(parse).collect()
-        }
-    };
+    // first with every `f` line guessed a triangle; exactly if a chunk met a polygon
+    let (mut whole, mut outcomes) = parse_chunks(&chunks, &offsets, false);
+    if !outcomes.iter().all(|o| o.counted_right) {
+        (whole, outcomes) = parse_chunks(&chunks, &offsets, true);
+    }
     // each chunk stops at its first bad line, so the first chunk with one has the file's
-    whole.error = outcomes.iter().find_map(|o| o.error.clone());
+    whole.error = outcomes.iter().find_map(|o| o.chunk.error.clone());
     if let Some((line, problem)) = whole.error.take() {
         return Err(IoError::ObjSyntax {
             path: path.to_path_buf(),
@@ -81,8 +58,8 @@ pub(crate) fn read_obj_raw(
             problem,
         });
     }
-    whole.noted = outcomes.iter().map(|o| o.noted).sum();
-    if total.v == 0 {
+    whole.noted = outcomes.iter().map(|o| o.chunk.noted).sum();
+    if whole.positions.is_empty() {
         return Err(IoError::InvalidMesh {
             path: path.to_path_buf(),
             origin: None,
@@ -103,6 +80,72 @@ pub(crate) fn read_obj_raw(
     source.face_lines = Some(whole.face_lines);
     let raw = RawMesh::new(whole.positions, whole.faces, uv, source, None);
     Ok((raw.with_corner_uv(corner_uv), whole.vertex_spans))
+}
+
+/// A chunk's outcome, and whether its count was right (the guess of [`count`] can be
+/// short).
+struct Outcome {
+    chunk: ChunkOutcome,
+    counted_right: bool,
+}
+
+/// One chunk to parse: its text and byte offset, the counts before it and its own, and
+/// its room in the text's arrays.
+struct Job<'t, 's> {
+    chunk: &'t [u8],
+    at: usize,
+    before: Counts,
+    own: Counts,
+    sink: Sink<'s>,
+}
+
+/// Counts (`exact`: see [`count`]) and parses the chunks, each straight into its slices of
+/// the text's arrays.
+fn parse_chunks(chunks: &[&[u8]], offsets: &[usize], exact: bool) -> (Parsed, Vec<Outcome>) {
+    let counts: Vec<Counts> = if chunks.len() > 1 {
+        chunks.par_iter().map(|c| count(c, exact)).collect()
+    } else {
+        chunks.iter().map(|c| count(c, exact)).collect()
+    };
+    let total = counts.iter().fold(Counts::default(), |a, &c| a.add(c));
+    let mut before = Vec::with_capacity(counts.len());
+    let mut acc = Counts::default();
+    for &c in &counts {
+        before.push(acc);
+        acc = acc.add(c);
+    }
+    let mut whole = Parsed::with_counts(total);
+    let outcomes = {
+        let sinks = whole.sinks(&counts);
+        let jobs = sinks.into_iter().enumerate().map(|(k, sink)| Job {
+            chunk: chunks[k],
+            at: offsets[k],
+            before: before[k],
+            own: counts[k],
+            sink,
+        });
+        let parse = |mut job: Job<'_, '_>| {
+            let chunk = parse_into(job.chunk, job.at, job.before, total, &mut job.sink);
+            // a short guess overflows its room; a chunk that ends early has an error
+            let counted_right = match &chunk.error {
+                Some((_, problem)) => *problem != ObjProblem::Miscounted,
+                None => chunk.triangles == job.own.tri,
+            };
+            Outcome {
+                chunk,
+                counted_right: exact || counted_right,
+            }
+        };
+        if counts.len() > 1 {
+            jobs.collect::<Vec<_>>()
+                .into_par_iter()
+                .map(parse)
+                .collect()
+        } else {
+            jobs.map(parse).collect()
+        }
+    };
+    (whole, outcomes)
 }
 
 /// The texture coordinate of every corner, when every corner has one.
@@ -209,6 +252,28 @@ mod tests {
         assert_eq!(raw.faces, one.faces);
         assert_eq!(raw.source.vertex_lines.unwrap(), one.vertex_lines);
         assert_eq!(raw.source.face_lines.unwrap(), one.face_lines);
+        // polygons far into the text: the triangle guess is short there, so the text is
+        // counted again exactly, with the same result; and an error after a polygon is
+        // still found on its line
+        let mut polygons = text.clone();
+        for i in 0..n - 3 {
+            if i % 5000 == 4999 {
+                polygons.push_str(&format!("f {} {} {} {}\n", i + 1, i + 2, i + 3, i + 4));
+            }
+        }
+        let raw = read_obj_raw(polygons.as_bytes(), Path::new("t.obj"))
+            .unwrap()
+            .0;
+        let one = super::super::parse::parse_text(polygons.as_bytes());
+        assert_eq!(raw.faces.len(), n - 2 + 2 * ((n - 3) / 5000));
+        assert_eq!(raw.faces, one.faces);
+        assert_eq!(raw.source.face_lines.unwrap(), one.face_lines);
+        let bad = format!("{polygons}f 1 2\n");
+        let err = read_obj_raw(bad.as_bytes(), Path::new("t.obj")).unwrap_err();
+        assert!(
+            matches!(err, IoError::ObjSyntax { line, .. } if line == bad.lines().count()),
+            "{err}"
+        );
         // an error in the last part of the file is found on its line
         let bad = format!("{text}f 1 2 0\n");
         let lines = bad.lines().count();

@@ -1,23 +1,99 @@
 //! OBJ writing. Numbers use the shortest decimal that reads back as the same f64 (`ryu`),
 //! so reading the file back gives the same bits; indices use `itoa`. Large meshes are
 //! formatted in parallel blocks (rayon): the blocks of every section (`v`, `vt`, `f`) form
-//! one parallel job list, so both cores stay busy across the sections, and the parts are
-//! returned in file order for one sequential write.
+//! one parallel job list, so both cores stay busy across the sections, and
+//! [`Encoded::write_to`] writes them in file order as they are formatted, a few blocks at a
+//! time through buffers it reuses (the whole text never exists in memory: on a machine
+//! where fresh memory costs a page fault per 4 KiB, formatting into new buffers cost a
+//! third of writing a map).
+
+use std::io::Write;
 
 use rayon::prelude::*;
 
 use crate::loaded::VertexText;
 
 /// Rows (vertices, texture coordinates or faces) formatted per block: large enough that a
-/// block (~0.5 ms) is far more work than handing it to a thread, small enough that the
-/// last blocks balance two cores.
-const BLOCK_ROWS: usize = 1 << 13;
+/// block (~0.25 ms, 100–150 KiB) is far more work than handing it to a thread, small
+/// enough that the buffers [`Encoded::write_to`] reuses stay small.
+const BLOCK_ROWS: usize = 1 << 12;
 
-/// One block of rows, formatted when called.
-type Block<'a> = Box<dyn Fn() -> Vec<u8> + Send + Sync + 'a>;
+/// Blocks formatted per round of [`Encoded::write_to`], per thread: two, so that a thread
+/// that finishes early (the other tenant of the core) takes another.
+const BLOCKS_PER_THREAD: usize = 2;
+
+/// One block of rows, appended to the buffer when called.
+type Block<'a> = Box<dyn Fn(&mut Vec<u8>) + Send + Sync + 'a>;
+
+/// The text of an OBJ file, not formatted yet: a header and blocks of rows in file order.
+pub(crate) struct Encoded<'a> {
+    header: Vec<u8>,
+    jobs: Vec<Block<'a>>,
+}
+
+impl Encoded<'_> {
+    /// Every block formatted (in parallel when there are several), in order, after the
+    /// header.
+    pub(crate) fn parts(&self) -> Vec<Vec<u8>> {
+        let format = |job: &Block<'_>| {
+            let mut out = Vec::new();
+            job(&mut out);
+            out
+        };
+        let mut parts = vec![self.header.clone()];
+        if self.jobs.len() <= 1 {
+            parts.extend(self.jobs.iter().map(format));
+        } else {
+            parts.par_extend(self.jobs.par_iter().map(format));
+        }
+        parts
+    }
+
+    /// The whole text in one buffer.
+    pub(crate) fn concat(&self) -> Vec<u8> {
+        self.parts().concat()
+    }
+
+    /// Writes the text to `w`: rounds of [`BLOCKS_PER_THREAD`] blocks per thread formatted
+    /// in parallel into reused buffers, each round written while the next is formatted.
+    ///
+    /// # Errors
+    /// The first error of `w`.
+    pub(crate) fn write_to(&self, w: &mut (impl Write + Send)) -> std::io::Result<()> {
+        w.write_all(&self.header)?;
+        let round = BLOCKS_PER_THREAD * rayon::current_num_threads().max(1);
+        let mut formatting: Vec<Vec<u8>> = vec![Vec::new(); round];
+        let mut written: Vec<Vec<u8>> = vec![Vec::new(); round];
+        let mut ready = 0;
+        let fill = |bufs: &mut [Vec<u8>], jobs: &[Block<'_>]| {
+            let run = |(buf, job): (&mut Vec<u8>, &Block<'_>)| {
+                buf.clear();
+                job(buf);
+            };
+            if jobs.len() <= 1 {
+                bufs.iter_mut().zip(jobs).for_each(run);
+            } else {
+                bufs.par_iter_mut().zip(jobs).for_each(run);
+            }
+        };
+        let flush = |w: &mut (dyn Write + Send), bufs: &[Vec<u8>]| {
+            bufs.iter().try_for_each(|b| w.write_all(b))
+        };
+        for jobs in self.jobs.chunks(round) {
+            let (_, wrote) = rayon::join(
+                || fill(&mut formatting, jobs),
+                || flush(w, &written[..ready]),
+            );
+            wrote?;
+            std::mem::swap(&mut formatting, &mut written);
+            ready = jobs.len();
+        }
+        flush(w, &written[..ready])
+    }
+}
 
 /// `v` lines and 1-based `f a b c` lines, as parts to be written in order.
-pub(crate) fn encode_obj(points: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
+pub(crate) fn encode_obj<'a>(points: &'a [[f64; 3]], faces: &'a [[u32; 3]]) -> Encoded<'a> {
     let mut jobs = section(points, 3 * 26, push_vertex);
     jobs.extend(section(faces, 3 * 9, push_face));
     with_header(obj_header(points.len(), faces.len()), jobs)
@@ -28,18 +104,14 @@ pub(crate) fn obj_header(vertices: usize, faces: usize) -> String {
     format!("# conformap-io: {vertices} vertices, {faces} faces\n")
 }
 
-/// The `v` lines of [`encode_obj`], as parts in order.
-pub(crate) fn vertex_lines(points: &[[f64; 3]]) -> Vec<Vec<u8>> {
-    let mut parts = with_header(String::new(), section(points, 3 * 26, push_vertex));
-    parts.remove(0);
-    parts
+/// The `v` lines of [`encode_obj`].
+pub(crate) fn vertex_lines(points: &[[f64; 3]]) -> Encoded<'_> {
+    with_header(String::new(), section(points, 3 * 26, push_vertex))
 }
 
-/// The 1-based `f a b c` lines of [`encode_obj`], as parts in order.
-pub(crate) fn face_lines(faces: &[[u32; 3]]) -> Vec<Vec<u8>> {
-    let mut parts = with_header(String::new(), section(faces, 3 * 9, push_face));
-    parts.remove(0);
-    parts
+/// The 1-based `f a b c` lines of [`encode_obj`].
+pub(crate) fn face_lines(faces: &[[u32; 3]]) -> Encoded<'_> {
+    with_header(String::new(), section(faces, 3 * 9, push_face))
 }
 
 /// `f a b c` (1-based) and the line end.
@@ -52,15 +124,15 @@ fn push_face(out: &mut Vec<u8>, f: &[u32; 3]) {
     out.push(b'\n');
 }
 
-/// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines, as parts to be
-/// written in order. `text`: the file the points were read from, whose numbers are copied
-/// where they parse to exactly the point (see [`VertexText`]).
-pub(crate) fn encode_obj_with_uv(
-    points: &[[f64; 3]],
-    uv: &[[f64; 2]],
-    faces: &[[u32; 3]],
-    text: Option<&VertexText>,
-) -> Vec<Vec<u8>> {
+/// `v` lines, one `vt` per vertex (same order), and `f a/a b/b c/c` lines. `text`: the
+/// file the points were read from, whose numbers are copied where they parse to exactly
+/// the point (see [`VertexText`]).
+pub(crate) fn encode_obj_with_uv<'a>(
+    points: &'a [[f64; 3]],
+    uv: &'a [[f64; 2]],
+    faces: &'a [[u32; 3]],
+    text: Option<&'a VertexText>,
+) -> Encoded<'a> {
     let header = format!(
         "# conformap-io: {} vertices, {} faces, one vt per vertex (vt k belongs to v k)\n",
         points.len(),
@@ -71,35 +143,38 @@ pub(crate) fn encode_obj_with_uv(
         None => section(points, 3 * 26, push_vertex),
     };
     jobs.extend(vt_blocks(uv));
-    jobs.extend(section(faces, 3 * 18, |out, f| {
-        push_face_with_vt(out, f, f)
-    }));
+    jobs.extend(section(faces, 3 * 18, push_face_with_same_vt));
     with_header(header, jobs)
 }
 
 /// `v` lines, the `vt` lines of a seamed map, and `f a/ta b/tb c/tc` lines (`uv_faces[f]`
-/// gives the `vt` of each corner of `faces[f]`), as parts to be written in order.
-pub(crate) fn encode_obj_with_corner_uv(
-    points: &[[f64; 3]],
-    texcoords: &[[f64; 2]],
-    faces: &[[u32; 3]],
-    uv_faces: &[[u32; 3]],
-) -> Vec<Vec<u8>> {
+/// gives the `vt` of each corner of `faces[f]`).
+pub(crate) fn encode_obj_with_corner_uv<'a>(
+    points: &'a [[f64; 3]],
+    texcoords: &'a [[f64; 2]],
+    faces: &'a [[u32; 3]],
+    uv_faces: &'a [[u32; 3]],
+) -> Encoded<'a> {
     let header = format!(
         "# conformap-io: {} vertices, {} faces, {} vt (one per corner class: f v/vt)\n",
         points.len(),
         faces.len(),
         texcoords.len()
     );
-    let rows: Vec<([u32; 3], [u32; 3])> = faces
-        .iter()
-        .copied()
-        .zip(uv_faces.iter().copied())
-        .collect();
     let mut jobs = vertex_and_vt_blocks(points, texcoords);
-    jobs.extend(section(&rows, 3 * 18, |out, (f, t)| {
-        push_face_with_vt(out, f, t)
-    }));
+    jobs.extend(
+        faces
+            .chunks(BLOCK_ROWS)
+            .zip(uv_faces.chunks(BLOCK_ROWS))
+            .map(|(fs, ts)| {
+                Box::new(move |out: &mut Vec<u8>| {
+                    out.reserve(3 * 18 * fs.len());
+                    for (f, t) in fs.iter().zip(ts) {
+                        push_face_with_vt(out, f, t);
+                    }
+                }) as Block<'a>
+            }),
+    );
     with_header(header, jobs)
 }
 
@@ -124,9 +199,9 @@ fn vertex_blocks_from_text<'a>(points: &'a [[f64; 3]], text: &'a VertexText) -> 
     (0..points.len())
         .step_by(BLOCK_ROWS)
         .map(|first| {
-            Box::new(move || {
+            Box::new(move |out: &mut Vec<u8>| {
                 let last = (first + BLOCK_ROWS).min(points.len());
-                let mut out = Vec::with_capacity(3 * 26 * (last - first) + 16);
+                out.reserve(3 * 26 * (last - first) + 16);
                 for (v, p) in points.iter().enumerate().take(last).skip(first) {
                     match text.vertex(v).filter(|_| text.matches(v, *p)) {
                         Some(numbers) => {
@@ -134,13 +209,27 @@ fn vertex_blocks_from_text<'a>(points: &'a [[f64; 3]], text: &'a VertexText) -> 
                             out.extend_from_slice(numbers);
                             out.push(b'\n');
                         }
-                        None => push_vertex(&mut out, p),
+                        None => push_vertex(out, p),
                     }
                 }
-                out
             }) as Block<'a>
         })
         .collect()
+}
+
+/// `f v/v v/v v/v` (1-based; the `vt` of a vertex has its number), each number formatted
+/// once.
+fn push_face_with_same_vt(out: &mut Vec<u8>, f: &[u32; 3]) {
+    let mut buf = itoa::Buffer::new();
+    out.push(b'f');
+    for &i in f {
+        let digits = buf.format(u64::from(i) + 1).as_bytes();
+        out.push(b' ');
+        out.extend_from_slice(digits);
+        out.push(b'/');
+        out.extend_from_slice(digits);
+    }
+    out.push(b'\n');
 }
 
 /// `f v/vt v/vt v/vt` (1-based) and the line end.
@@ -164,26 +253,22 @@ fn section<'a, T: Sync>(
 ) -> Vec<Block<'a>> {
     rows.chunks(BLOCK_ROWS)
         .map(|chunk| {
-            Box::new(move || {
-                let mut out = Vec::with_capacity(guess * chunk.len() + 16);
+            Box::new(move |out: &mut Vec<u8>| {
+                out.reserve(guess * chunk.len() + 16);
                 for r in chunk {
-                    line(&mut out, r);
+                    line(out, r);
                 }
-                out
             }) as Block<'a>
         })
         .collect()
 }
 
-/// The header, then every block formatted (in parallel when there are several), in order.
-fn with_header(header: String, jobs: Vec<Block<'_>>) -> Vec<Vec<u8>> {
-    let mut parts = vec![header.into_bytes()];
-    if jobs.len() <= 1 {
-        parts.extend(jobs.iter().map(|job| job()));
-    } else {
-        parts.par_extend(jobs.par_iter().map(|job| job()));
+/// The header and the blocks, to be formatted later.
+fn with_header(header: String, jobs: Vec<Block<'_>>) -> Encoded<'_> {
+    Encoded {
+        header: header.into_bytes(),
+        jobs,
     }
-    parts
 }
 
 fn push_vertex(out: &mut Vec<u8>, p: &[f64; 3]) {
@@ -214,8 +299,9 @@ mod tests {
 
     #[test]
     fn shortest_round_trip_formatting() {
-        let text = encode_obj(&[[0.1, -0.0, 1e-300], [1e300, 3.0, 2.5e-7]], &[[0, 1, 0]]);
-        let text = String::from_utf8(text.concat()).unwrap_or_default();
+        let points = [[0.1, -0.0, 1e-300], [1e300, 3.0, 2.5e-7]];
+        let text = encode_obj(&points, &[[0, 1, 0]]).concat();
+        let text = String::from_utf8(text).unwrap_or_default();
         assert!(text.contains("v 0.1 -0.0 1e-300\n"), "{text}");
         assert!(text.contains("v 1e300 3.0 2.5e-7\n"), "{text}");
         assert!(text.ends_with("f 1 2 1\n"), "{text}");
@@ -225,9 +311,14 @@ mod tests {
     fn blocks_keep_row_order() {
         let n = 3 * BLOCK_ROWS + 7;
         let faces: Vec<[u32; 3]> = (0..n as u32).map(|i| [i, i + 1, u32::MAX - 1]).collect();
-        let parts = encode_obj(&[], &faces);
+        let encoded = encode_obj(&[], &faces);
+        let parts = encoded.parts();
         assert!(parts.len() > 3);
-        let text = String::from_utf8(parts.concat()).unwrap_or_default();
+        // streamed through the reused buffers: the same bytes
+        let mut streamed = Vec::new();
+        encoded.write_to(&mut streamed).unwrap();
+        assert_eq!(streamed, parts.concat());
+        let text = String::from_utf8(streamed).unwrap_or_default();
         let lines: Vec<&str> = text.lines().skip(1).collect();
         assert_eq!(lines.len(), n);
         assert_eq!(lines[n - 1], format!("f {n} {} 4294967295", n + 1));
