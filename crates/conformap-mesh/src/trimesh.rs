@@ -1,5 +1,7 @@
 //! The validated triangle mesh and its half-edge connectivity.
 
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use crate::error::MeshError;
 
 /// Marker for "no half-edge" (a boundary half-edge has no opposite).
@@ -591,7 +593,7 @@ fn duplicate_pairs(opposite: &[u32]) -> Result<(), MeshError> {
 /// below `n`) and then by `rest` within each bucket, which orders them exactly as a full
 /// sort of `(bucket, rest)` would, in linear time plus sorts of a few items each. Returns
 /// the `rest` values and the bucket offsets (`n + 1`).
-fn sort_by_bucket<T: Ord + Copy + Default>(
+fn bucket_scatter<T: Ord + Copy + Default>(
     n: usize,
     len: usize,
     items: impl Iterator<Item = (u32, T)> + Clone,
@@ -614,31 +616,105 @@ fn sort_by_bucket<T: Ord + Copy + Default>(
         offsets.copy_within(0..n - 1, 1);
         offsets[0] = 0;
     }
+    (sorted, offsets)
+}
+
+/// [`bucket_scatter`], then each bucket sorted: `(bucket, rest)` items in the order of a
+/// full sort (see [`bucket_scatter`]).
+fn sort_by_bucket<T: Ord + Copy + Default>(
+    n: usize,
+    len: usize,
+    items: impl Iterator<Item = (u32, T)> + Clone,
+) -> (Vec<T>, Vec<usize>) {
+    let (mut sorted, offsets) = bucket_scatter(n, len, items);
     for w in offsets.windows(2) {
         sorted[w[0]..w[1]].sort_unstable();
     }
     (sorted, offsets)
 }
 
-/// Pairs half-edges into opposites; rejects non-manifold edges and inconsistent orientation.
+/// Vertices per piece of the bucket range below which [`match_halfedges`] stops splitting
+/// it between threads (a piece then takes ~1 ms).
+const MATCH_SPLIT_VERTICES: usize = 1 << 14;
+
+/// Pairs half-edges into opposites; rejects non-manifold edges and inconsistent orientation
+/// with the error of [`match_halfedges_in_order`].
+///
+/// The buckets (half-edges by smaller vertex) are sorted and matched in pieces on all
+/// threads; a piece that meets any error stops, and the matching is then redone in order
+/// by [`match_halfedges_in_order`], which picks the error to report (the rule depends on
+/// the order errors are met in).
+fn match_halfedges(n: usize, faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
+    let nh = faces.len() * 3;
+    let (mut keys, offsets) = bucket_scatter(n, nh, halfedge_keys(faces));
+    let opposite: Vec<AtomicU32> = (0..nh).map(|_| AtomicU32::new(NO_HALFEDGE)).collect();
+    if !match_buckets(&mut keys, &offsets, 0..n, faces, &opposite) {
+        return match_halfedges_in_order(n, faces);
+    }
+    Ok(opposite.into_iter().map(AtomicU32::into_inner).collect())
+}
+
+/// The half-edges of `faces` as `(smaller vertex, larger vertex << 32 | half-edge)`.
+fn halfedge_keys(faces: &[[u32; 3]]) -> impl Iterator<Item = (u32, u64)> + Clone + '_ {
+    faces.iter().enumerate().flat_map(|(f, tri)| {
+        (0..3).map(move |k| {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let rest = (u64::from(a.max(b)) << 32) | (3 * f + k) as u64;
+            (a.min(b), rest)
+        })
+    })
+}
+
+/// Sorts and matches the buckets `range` (their keys are `keys`, which starts at bucket
+/// `range.start`), splitting the range between threads; `false` at the first error.
+fn match_buckets(
+    keys: &mut [u64],
+    offsets: &[usize],
+    range: std::ops::Range<usize>,
+    faces: &[[u32; 3]],
+    opposite: &[AtomicU32],
+) -> bool {
+    if range.len() > MATCH_SPLIT_VERTICES {
+        let mid = range.start + range.len() / 2;
+        let (lo, hi) = keys.split_at_mut(offsets[mid] - offsets[range.start]);
+        let (a, b) = rayon::join(
+            || match_buckets(lo, offsets, range.start..mid, faces, opposite),
+            || match_buckets(hi, offsets, mid..range.end, faces, opposite),
+        );
+        return a && b;
+    }
+    let base = offsets[range.start];
+    for v in range {
+        let bucket = &mut keys[offsets[v] - base..offsets[v + 1] - base];
+        bucket.sort_unstable();
+        for run in bucket.chunk_by(|x, y| x >> 32 == y >> 32) {
+            match run {
+                [_] => {}
+                [x, y] => {
+                    let (h0, h1) = ((*x as u32) as usize, (*y as u32) as usize);
+                    // the two half-edges of an edge run opposite ways
+                    if faces[h0 / 3][h0 % 3] == faces[h1 / 3][h1 % 3] {
+                        return false;
+                    }
+                    opposite[h0].store(h1 as u32, Ordering::Relaxed);
+                    opposite[h1].store(h0 as u32, Ordering::Relaxed);
+                }
+                _ => return false,
+            }
+        }
+    }
+    true
+}
+
+/// [`match_halfedges`] in one pass over the buckets in order.
 ///
 /// The half-edges are grouped by their undirected edge `(min, max)` in the order of a sort
 /// by `(min, max, half-edge)` (see [`sort_by_bucket`]); the first error in that order
 /// wins as described below.
-fn match_halfedges(n: usize, faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
+fn match_halfedges_in_order(n: usize, faces: &[[u32; 3]]) -> Result<Vec<u32>, MeshError> {
     let nh = faces.len() * 3;
     // bucket: the smaller vertex; rest: the larger vertex << 32 | half-edge
-    let (keys, offsets) = sort_by_bucket(
-        n,
-        nh,
-        faces.iter().enumerate().flat_map(|(f, tri)| {
-            (0..3).map(move |k| {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let rest = (u64::from(a.max(b)) << 32) | (3 * f + k) as u64;
-                (a.min(b), rest)
-            })
-        }),
-    );
+    let (keys, offsets) = sort_by_bucket(n, nh, halfedge_keys(faces));
     let mut opposite = vec![NO_HALFEDGE; nh];
     let mut first_error: Option<(usize, MeshError)> = None;
     for (a, bucket) in offsets.windows(2).enumerate() {
@@ -802,4 +878,47 @@ fn induced_components(adj: &Adjacency, keep: &[bool]) -> usize {
     (0..n as u32)
         .filter(|&v| keep[v as usize] && find(&mut parent, v) == v)
         .count()
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
+mod tests {
+    use super::*;
+
+    /// Triangles of an `n × n` grid of squares, consistently oriented.
+    fn grid_faces(n: u32) -> Vec<[u32; 3]> {
+        let at = |i: u32, j: u32| i * (n + 1) + j;
+        (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                [
+                    [at(i, j), at(i, j + 1), at(i + 1, j + 1)],
+                    [at(i, j), at(i + 1, j + 1), at(i + 1, j)],
+                ]
+            })
+            .collect()
+    }
+
+    /// The matching split between threads gives the one in order: the opposites of a
+    /// valid mesh large enough to be split, and the error (found again in order) when
+    /// faces far apart in the bucket range break it in different ways.
+    #[test]
+    fn split_matching_agrees_with_the_matching_in_order() {
+        let n = 300; // 90,601 vertices: several pieces of MATCH_SPLIT_VERTICES
+        let faces = grid_faces(n);
+        let v = ((n + 1) * (n + 1)) as usize;
+        assert!(v > 4 * MATCH_SPLIT_VERTICES);
+        let split = match_halfedges(v, &faces).unwrap();
+        assert_eq!(split, match_halfedges_in_order(v, &faces).unwrap());
+        assert_eq!(split.iter().filter(|&&o| o == NO_HALFEDGE).count(), 4 * n as usize);
+        // a face turned over near the end and a third face on an edge near the start
+        let mut broken = faces.clone();
+        let last = broken.len() - 7;
+        broken[last].swap(1, 2);
+        broken.push([broken[10][0], broken[10][1], (v - 1) as u32]);
+        assert_eq!(
+            match_halfedges(v, &broken).unwrap_err(),
+            match_halfedges_in_order(v, &broken).unwrap_err()
+        );
+    }
 }
