@@ -542,35 +542,36 @@ const EXACT_POWERS_OF_TEN: [f64; 23] = [
 /// of ten below 10^23, both exact in f64, and one IEEE division rounds correctly
 /// (Clinger's fast path, as `fast-float2` takes it too, without its general set-up).
 pub(crate) fn decimal(s: &[u8]) -> Option<(f64, usize)> {
-    let negative = s.first() == Some(&b'-');
-    let mut i = usize::from(negative);
-    let int_start = i;
+    let (negative, mut rest) = match s {
+        [b'-', tail @ ..] => (true, tail),
+        _ => (false, s),
+    };
     let mut m: u64 = 0;
     // wrapping: a value of more than 15 digits is refused below
-    while let Some(&d) = s.get(i).filter(|d| d.is_ascii_digit()) {
+    let mut digits = 0usize;
+    while let [d @ b'0'..=b'9', tail @ ..] = rest {
         m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
-        i += 1;
+        digits += 1;
+        rest = tail;
     }
-    let int_digits = i - int_start;
-    if int_digits == 0 {
+    if digits == 0 {
         return None;
     }
-    let mut scale = 0;
-    if s.get(i) == Some(&b'.') {
-        i += 1;
-        let frac_start = i;
-        while let Some(&d) = s.get(i).filter(|d| d.is_ascii_digit()) {
+    let mut scale = 0usize;
+    if let [b'.', tail @ ..] = rest {
+        rest = tail;
+        while let [d @ b'0'..=b'9', tail @ ..] = rest {
             m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
-            i += 1;
+            scale += 1;
+            rest = tail;
         }
-        scale = i - frac_start;
     }
     // 15 digits keep m below 10^15 < 2^53 (leading zeros count too: a safe bound)
-    if int_digits + scale > 15 || s.get(i).is_some_and(|&b| !is_blank(b)) {
+    if digits + scale > 15 || rest.first().is_some_and(|&b| !is_blank(b)) {
         return None;
     }
     let x = m as f64 / EXACT_POWERS_OF_TEN[scale];
-    Some((if negative { -x } else { x }, i))
+    Some((if negative { -x } else { x }, s.len() - rest.len()))
 }
 
 /// An optionally signed decimal integer at the start of `s`: its value and length, `None`
