@@ -62,6 +62,31 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .max()
         .unwrap_or(0);
     println!("{}", serde_json::to_string_pretty(&m.report)?);
+    // how much the correspondence bends S1's triangles: the largest change of a corner
+    // angle per face, S1 against every key frame
+    for (k, key) in m.keys().iter().enumerate().skip(1) {
+        let mut change: Vec<f64> = m
+            .faces()
+            .iter()
+            .map(|f| {
+                let (a, b) = (
+                    corner_angles(surfaces[0].mesh.positions(), f),
+                    corner_angles(key, f),
+                );
+                (0..3)
+                    .map(|c| (a[c] - b[c]).abs().to_degrees())
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        change.sort_by(f64::total_cmp);
+        let q = |p: f64| change[((change.len() - 1) as f64 * p).round() as usize];
+        println!(
+            "key {k}: largest corner-angle change per face against S1: median {:.2}°, 90 % {:.2}°, 99 % {:.2}°",
+            q(0.5),
+            q(0.9),
+            q(0.99)
+        );
+    }
     println!(
         "read {read_ms:.0} ms, morph {morph_ms:.0} ms, {frames} frames {frames_ms:.0} ms; \
          largest frame step {:.3e} of the diagonal (mean {:.3e}); degenerate faces in the \
@@ -70,4 +95,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         steps.iter().sum::<f64>() / steps.len() as f64
     );
     Ok(())
+}
+
+/// The three corner angles (radians) of face `f` of `p`.
+fn corner_angles(p: &[[f64; 3]], f: &[u32; 3]) -> [f64; 3] {
+    let [a, b, c] = f.map(|v| p[v as usize]);
+    let angle = |o: [f64; 3], x: [f64; 3], y: [f64; 3]| {
+        let u = [x[0] - o[0], x[1] - o[1], x[2] - o[2]];
+        let w = [y[0] - o[0], y[1] - o[1], y[2] - o[2]];
+        let dot = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+        let cross = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2])
+            .sqrt()
+            .atan2(dot)
+    };
+    [angle(a, b, c), angle(b, c, a), angle(c, a, b)]
 }

@@ -3,13 +3,17 @@
 //! tear or a fold shows as broken cells), and a close-up of the eyes and mouth coloured
 //! by the angle distortion of that map with the faces flipped against the key surface
 //! flagged magenta. `--no-creases`: without carrying S1's crease loops (the hole-fill
-//! rims) onto the key surfaces', for comparison.
+//! rims) onto the key surfaces', for comparison. `--around V1,V2,... --radius R`: also a
+//! close-up of the faces of S1 within `R` (of the diagonal) of S1's vertices `V1, V2, …`
+//! (e.g. the mouth corners), seen from `--azimuth A --elevation E` degrees.
 //!
 //! ```text
-//! cargo run --release -p conformap-morph --example keyframes -- [--hard] [--no-creases] [OUT_DIR]
+//! cargo run --release -p conformap-morph --example keyframes -- [--hard] [--no-creases] \
+//!     [--around V1,V2 --radius R [--azimuth A] [--elevation E]] [OUT_DIR]
 //! ```
 //!
-//! Writes `OUT_DIR/key_K.png` and `OUT_DIR/key_K_closeup.png` (default `target/morph`).
+//! Writes `OUT_DIR/key_K.png`, `OUT_DIR/key_K_closeup.png` and, with `--around`,
+//! `OUT_DIR/key_K_around.png` (default `target/morph`).
 
 use std::path::PathBuf;
 
@@ -32,6 +36,21 @@ fn main() -> Result<()> {
         args.remove(k);
         options = options.with_crease_matching(false);
     }
+    let mut value = |flag: &str| -> Option<String> {
+        let k = args.iter().position(|a| a == flag)?;
+        args.remove(k);
+        (k < args.len()).then(|| args.remove(k))
+    };
+    let around: Vec<u32> = match value("--around") {
+        Some(list) => list
+            .split(',')
+            .map(str::parse)
+            .collect::<std::result::Result<_, _>>()?,
+        None => Vec::new(),
+    };
+    let around_radius: f64 = value("--radius").map_or(Ok(0.03), |r| r.parse())?;
+    let azimuth: f64 = value("--azimuth").map_or(Ok(0.0), |r| r.parse())?;
+    let elevation: f64 = value("--elevation").map_or(Ok(0.0), |r| r.parse())?;
     let out = PathBuf::from(args.pop().unwrap_or_else(|| "target/morph".into()));
     std::fs::create_dir_all(&out)?;
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/morph");
@@ -69,46 +88,70 @@ fn main() -> Result<()> {
         );
         // the close-up: faces of S1 within a radius of the eye and mouth landmarks, the
         // flipped ones with two corners swapped (a folded face, flagged by the renderer)
-        let lm: Vec<[f64; 3]> = surfaces[0].landmarks.vertices()[1..]
-            .iter()
-            .map(|&v| s1.positions()[v as usize])
-            .collect();
+        let view = RenderOptions::DEFAULT
+            .with_size(480)
+            .with_color(ColorBy::Angle);
+        let lm: Vec<u32> = surfaces[0].landmarks.vertices()[1..].to_vec();
         let radius = 0.12 * s1.bbox_diagonal();
-        let near = |f: &[u32; 3]| {
-            let p = s1.positions()[f[0] as usize];
-            lm.iter().any(|q| {
-                let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < radius
-            })
-        };
-        let mut faces = Vec::new();
-        let mut corners: Vec<[Complex64; 3]> = Vec::new();
-        for (i, f) in s1.faces().iter().enumerate() {
-            if !near(f) {
-                continue;
-            }
-            let mut c = f.map(|v| disk[v as usize]);
-            if flips.binary_search(&i).is_ok() {
-                c.swap(1, 2);
-            }
-            faces.push(*f);
-            corners.push(c);
+        closeup(&m.keys()[k], s1, &disk, &flips, &lm, radius, &view)?
+            .save_png(&out.join(format!("key_{k}_closeup.png")))?;
+        if !around.is_empty() {
+            let view = view
+                .with_size(720)
+                .with_azimuth_deg(azimuth)
+                .with_elevation_deg(elevation);
+            let radius = around_radius * s1.bbox_diagonal();
+            closeup(&m.keys()[k], s1, &disk, &flips, &around, radius, &view)?
+                .save_png(&out.join(format!("key_{k}_around.png")))?;
         }
-        let crop = submesh(&m.keys()[k], faces, &mut corners)?;
-        let picture = render(
-            &crop,
-            &MapCoords::Planar(UvValues::PerCorner(&corners)),
-            &RenderOptions::DEFAULT
-                .with_size(480)
-                .with_color(ColorBy::Angle),
-        )?;
-        picture.save_png(&out.join(format!("key_{k}_closeup.png")))?;
         println!(
-            "key {k}: {} flipped faces (magenta in the close-up)",
-            flips.len()
+            "key {k}: {} flipped faces (magenta in the close-up): {:?}",
+            flips.len(),
+            flips.iter().map(|&f| s1.faces()[f]).collect::<Vec<_>>()
         );
     }
     Ok(())
+}
+
+/// The faces of S1 (first vertex within `radius` of one of S1's vertices `centres`) at
+/// the key frame's positions `key`, coloured through S1's disk map `disk`, the faces in
+/// `flips` with two corners swapped (flagged magenta by the renderer).
+fn closeup(
+    key: &[[f64; 3]],
+    s1: &TriMesh,
+    disk: &[Complex64],
+    flips: &[usize],
+    centres: &[u32],
+    radius: f64,
+    view: &RenderOptions,
+) -> Result<conformap_render::Image> {
+    let near = |f: &[u32; 3]| {
+        let p = s1.positions()[f[0] as usize];
+        centres.iter().any(|&c| {
+            let q = s1.positions()[c as usize];
+            let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < radius
+        })
+    };
+    let mut faces = Vec::new();
+    let mut corners: Vec<[Complex64; 3]> = Vec::new();
+    for (i, f) in s1.faces().iter().enumerate() {
+        if !near(f) {
+            continue;
+        }
+        let mut c = f.map(|v| disk[v as usize]);
+        if flips.binary_search(&i).is_ok() {
+            c.swap(1, 2);
+        }
+        faces.push(*f);
+        corners.push(c);
+    }
+    let crop = submesh(key, faces, &mut corners)?;
+    Ok(render(
+        &crop,
+        &MapCoords::Planar(UvValues::PerCorner(&corners)),
+        view,
+    )?)
 }
 
 /// The mesh of `faces` (indices into `points`) with only the vertices they use; a face at

@@ -59,7 +59,7 @@ pub use landmarks::Landmarks;
 pub use locate::{Location, TriangleGrid, LOCATE_INSIDE_TOL, LOCATE_TRIANGLES_PER_CELL};
 pub use morph::{
     morph, CreaseSummary, DiskSummary, KeyReport, KeyTimings, LocateSummary, Morph, MorphOptions,
-    MorphReport, Surface,
+    MorphReport, Surface, CORNER_WARP_SUPPORT,
 };
 pub use normalize::{normalize_disk_map, Normalized, NORMALIZE_BOUNDARY_TOL};
 pub use register::{

@@ -15,10 +15,15 @@
 //!   loop (corner to corner, the same share of arc length along each side), exactly on
 //!   one of its edges.
 //! - [`RimExtension`]: the harmonic extension of those moves to S1's other vertices.
+//! - `untangle`: where that extension folds S1's disk (a rim sliding far through small
+//!   faces), the free vertices of the folded faces move into the kernel of their ring
+//!   polygon, as little as possible ([`UNTANGLE_MAX_ROUNDS`], [`UNTANGLE_MARGIN`]).
 
 mod extend;
+pub(crate) mod untangle;
 
 pub use extend::RimExtension;
+pub use untangle::{UNTANGLE_MARGIN, UNTANGLE_MAX_ROUNDS};
 
 use std::collections::HashMap;
 
@@ -165,6 +170,35 @@ fn corners(lp: &[u32], positions: &[[f64; 3]]) -> (usize, usize) {
     (best.0, best.1)
 }
 
+/// The corners of the counter-clockwise loops `a` (of `from`) and `b` (of `onto`),
+/// paired: `[(a0, b0), (a1, b1)]`, positions in `a` and `b`, `a0` S1's first corner
+/// ([`corners`]), each S1 corner with the key corner nearer to it in the disk (the
+/// pairing with the smaller sum of distances).
+fn paired_corners(
+    a: &[u32],
+    from: &LoopOn<'_>,
+    b: &[u32],
+    onto: &LoopOn<'_>,
+) -> [(usize, usize); 2] {
+    let (a0, a1) = corners(a, from.positions);
+    let (b0, b1) = corners(b, onto.positions);
+    let near = |i: usize, j: usize| (from.disk[a[i] as usize] - onto.disk[b[j] as usize]).norm();
+    if near(a0, b0) + near(a1, b1) <= near(a0, b1) + near(a1, b0) {
+        [(a0, b0), (a1, b1)]
+    } else {
+        [(a0, b1), (a1, b0)]
+    }
+}
+
+/// The corners of matched loops as vertex pairs `(S1 vertex, key vertex)`, as
+/// [`rim_targets`] pairs them: the ends of the slits (mouth and eye corners on the
+/// shared faces).
+pub(crate) fn corner_vertices(from: &LoopOn<'_>, onto: &LoopOn<'_>) -> [(u32, u32); 2] {
+    let a = ccw(from.vertices, from.disk);
+    let b = ccw(onto.vertices, onto.disk);
+    paired_corners(&a, from, &b, onto).map(|(i, j)| (a[i], b[j]))
+}
+
 /// `lp` rotated to start at position `k`.
 fn rotated(lp: &[u32], k: usize) -> Vec<u32> {
     lp[k..].iter().chain(&lp[..k]).copied().collect()
@@ -278,15 +312,7 @@ pub(crate) fn rim_targets(
     let (disk1, diskk) = (from.disk, onto.disk);
     let a = ccw(from.vertices, disk1);
     let b = ccw(onto.vertices, diskk);
-    let (a0, a1) = corners(&a, from.positions);
-    let (b0, b1) = corners(&b, onto.positions);
-    let near = |i: usize, j: usize| (disk1[a[i] as usize] - diskk[b[j] as usize]).norm();
-    // S1's corner a0 goes to b0 or to b1, whichever pairing is nearer in the disk
-    let (b_start, b_other) = if near(a0, b0) + near(a1, b1) <= near(a0, b1) + near(a1, b0) {
-        (b0, b1)
-    } else {
-        (b1, b0)
-    };
+    let [(a0, b_start), (a1, b_other)] = paired_corners(&a, from, &b, onto);
     let a = rotated(&a, a0);
     let b = rotated(&b, b_start);
     let a_mid = (a1 + a.len() - a0) % a.len();
@@ -389,6 +415,49 @@ mod tests {
         }
         // with a sharper threshold the 117° edges are not creases
         assert!(crease_loops(&p, &f, 130.0).is_empty());
+    }
+
+    /// Two slits (hexagons long in x) in the plane, the second shifted and turned by 180°
+    /// in its numbering: each corner of the first pairs with the corner of the second
+    /// that lies near it, whatever the order in which the loops list them.
+    #[test]
+    fn corners_pair_with_the_nearer_corner() {
+        let slit = |dx: f64| -> Vec<[f64; 3]> {
+            [
+                (-3.0, 0.0),
+                (-1.0, -0.5),
+                (1.0, -0.5),
+                (3.0, 0.0),
+                (1.0, 0.5),
+                (-1.0, 0.5),
+            ]
+            .iter()
+            .map(|&(x, y)| [x + dx, y, 0.0])
+            .collect()
+        };
+        let p1 = slit(0.0);
+        // the second slit's vertices listed from its right corner
+        let mut p2 = slit(0.2);
+        p2.rotate_left(3);
+        let disk = |p: &[[f64; 3]]| -> Vec<Complex64> {
+            p.iter().map(|q| Complex64::new(q[0], q[1])).collect()
+        };
+        let (d1, d2) = (disk(&p1), disk(&p2));
+        let lp: Vec<u32> = (0..6).collect();
+        let from = LoopOn {
+            vertices: &lp,
+            disk: &d1,
+            positions: &p1,
+        };
+        let onto = LoopOn {
+            vertices: &lp,
+            disk: &d2,
+            positions: &p2,
+        };
+        // S1's left corner 0 goes to the second's left corner, vertex 3 there
+        let mut pairs = corner_vertices(&from, &onto);
+        pairs.sort_unstable();
+        assert_eq!(pairs, [(0, 3), (3, 0)]);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::RegistrationReport;
+use crate::{RegistrationReport, WarpReport};
 
 /// Milliseconds per stage for one key surface.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -107,13 +107,32 @@ pub struct CreaseSummary {
     pub rim_vertices: usize,
     /// The largest move (in the disk) of an S1 loop vertex onto this surface's loop.
     pub largest_move: f64,
-    /// The smallest share of its move a loop vertex got: 1 when S1's disk, moved, folds
-    /// no face; the moves near faces that would fold are halved (up to
+    /// The smallest share of its move a loop vertex got: 1 when S1's disk, moved and
+    /// untangled, folds no face; the moves near faces that would still fold are halved (up to
     /// [`crate::creases::RIM_MOVE_HALVINGS`] rounds), and those vertices are located
     /// where their partial move puts them; 0 when faces still folded then.
     pub smallest_share: f64,
-    /// Faces of S1's disk the full move would fold.
+    /// Faces of S1's disk the harmonic extension of the full move folds (before the
+    /// untangling).
     pub folded_at_full_move: usize,
+    /// Faces of S1's disk still folded after the untangling of the full move (before the
+    /// corner warp).
+    pub folded_after_untangling: usize,
+    /// Corners of this surface's loops moved onto S1's by the corner warp (only corners
+    /// near faces that fold after the untangling; 0: no corner warp).
+    pub warped_corners: usize,
+    /// The corner warp of this surface's registered disk (`None`: not needed). The
+    /// registration's report describes the disk before it.
+    pub corner_warp: Option<WarpReport>,
+    /// `E_D` of the registered disk after the corner warp (`None`: no corner warp; the
+    /// registration's `dirichlet_energy` is the one before).
+    pub dirichlet_energy_after_corner_warp: Option<f64>,
+    /// Free vertices of S1's moved disk the untangling moved into the kernel of their
+    /// ring (`crate::creases` module docs; 0 when nothing folded).
+    pub untangled_vertices: usize,
+    /// Rounds of the untangling (at most [`crate::creases::UNTANGLE_MAX_ROUNDS`]) at the
+    /// share of the move finally applied.
+    pub untangling_rounds: usize,
 }
 
 /// The report of a whole morph.

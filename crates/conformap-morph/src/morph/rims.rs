@@ -10,11 +10,13 @@ use rayon::prelude::*;
 
 use super::report::CreaseSummary;
 use super::{MorphOptions, Surface};
+use crate::creases::untangle::{folded, untangle, Rings};
 use crate::creases::{
-    crease_loops, edge_faces, match_loops, rim_targets, LoopOn, RimExtension, RimTarget,
-    RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
+    corner_vertices, crease_loops, edge_faces, match_loops, rim_targets, LoopOn, RimExtension,
+    RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
 };
-use crate::MorphError;
+use crate::register::warp_landmarks;
+use crate::{MorphError, WarpOptions, WarpReport};
 
 /// The crease loops of every surface and S1's extension operator.
 pub(super) struct Rims<'a> {
@@ -23,13 +25,42 @@ pub(super) struct Rims<'a> {
     /// S1's extension (held: its boundary, its loops, its landmarks); `None` when S1 has
     /// no loop.
     extension: Option<RimExtension>,
+    /// `free[v]`: S1's vertex `v` is not held by the extension (the untangling may move it).
+    free: Vec<bool>,
+    /// S1's vertex rings (the untangling's kernels).
+    rings: Rings,
     s1: &'a TriMesh,
     s1_disk: &'a [Complex64],
+    /// S1's landmark vertices.
+    landmarks: &'a [u32],
     /// Orientation of S1's disk (the sign of its boundary polygon's area).
     sigma: f64,
 }
 
 impl<'a> Rims<'a> {
+    /// S1's loop `i` and key surface `k`'s loop `j` (mesh `sk`, registered disk `hk`).
+    fn loop_pair<'b>(
+        &'b self,
+        k: usize,
+        sk: &'b TriMesh,
+        hk: &'b [Complex64],
+        i: usize,
+        j: usize,
+    ) -> (LoopOn<'b>, LoopOn<'b>) {
+        (
+            LoopOn {
+                vertices: &self.loops[0][i],
+                disk: self.s1_disk,
+                positions: self.s1.positions(),
+            },
+            LoopOn {
+                vertices: &self.loops[k][j],
+                disk: hk,
+                positions: sk.positions(),
+            },
+        )
+    }
+
     /// Finds the loops of every surface and factors S1's extension.
     pub fn new(
         surfaces: &'a [Surface],
@@ -42,16 +73,16 @@ impl<'a> Rims<'a> {
             .map(|s| crease_loops(s.mesh.positions(), s.mesh.faces(), options.crease_angle_deg))
             .collect();
         let s1 = &surfaces[0].mesh;
+        let mut held = s1.boundary_flags().to_vec();
+        for &v in loops[0].iter().flatten() {
+            held[v as usize] = true;
+        }
+        for &v in surfaces[0].landmarks.vertices() {
+            held[v as usize] = true;
+        }
         let extension = if loops[0].is_empty() {
             None
         } else {
-            let mut held = s1.boundary_flags().to_vec();
-            for &v in loops[0].iter().flatten() {
-                held[v as usize] = true;
-            }
-            for &v in surfaces[0].landmarks.vertices() {
-                held[v as usize] = true;
-            }
             let ext = RimExtension::new(problem.laplacian(), &held)
                 .map_err(|source| MorphError::Operator { surface: 0, source })?;
             Some(ext)
@@ -63,11 +94,26 @@ impl<'a> Rims<'a> {
         Ok(Self {
             loops,
             extension,
+            free: held.iter().map(|&h| !h).collect(),
+            rings: Rings::new(s1.faces(), s1.num_vertices()),
+            landmarks: surfaces[0].landmarks.vertices(),
             s1,
             s1_disk,
             sigma: if area >= 0.0 { 1.0 } else { -1.0 },
         })
     }
+}
+
+/// The corners of S1's loops and of key surface `k`'s (`sk`, registered disk `hk`),
+/// loops matched as [`carry_rims`] matches them: pairs `(S1 vertex, key vertex)`.
+fn corner_pairs(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> Vec<(u32, u32)> {
+    match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk)
+        .into_iter()
+        .flat_map(|(i, j)| {
+            let (from, onto) = r.loop_pair(k, sk, hk, i, j);
+            corner_vertices(&from, &onto)
+        })
+        .collect()
 }
 
 /// S1's disk with its loops moved onto key surface `k`'s.
@@ -81,12 +127,65 @@ pub(super) struct Carried {
     pub summary: CreaseSummary,
 }
 
-/// Moves S1's loops onto those of key surface `k` (`sk`, registered disk `hk`): matched
-/// loops, targets, the harmonic extension of the moves, and the fold check (the moves of
-/// the loop vertices near a face that would fold are halved, up to
-/// [`RIM_MOVE_HALVINGS`] rounds; a loop vertex whose move was cut is located where its
-/// partial move puts it instead of exactly on the key loop).
-pub(super) fn carry_rims(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> Carried {
+/// The key surface `k` as the carrying sees it: its mesh, its landmarks, its registered
+/// disk (which the corner warp may change) and the warp's options.
+pub(super) struct KeyDisk<'k> {
+    /// The key surface's mesh.
+    pub mesh: &'k TriMesh,
+    /// Its landmark vertices.
+    pub landmarks: &'k [u32],
+    /// Its registered disk (in S1's disk).
+    pub map: &'k mut [Complex64],
+    /// The options of the corner warp (the registration's landmark warp with the support
+    /// [`super::MorphOptions::corner_warp_support`]).
+    pub warp: WarpOptions,
+}
+
+/// The moves of S1's matched loop vertices onto key surface `k`'s loops (registered disk
+/// `hk`), with their targets, and the number of matched loops.
+fn rim_moves(
+    r: &Rims<'_>,
+    k: usize,
+    sk: &TriMesh,
+    hk: &[Complex64],
+) -> (Vec<Complex64>, Vec<RimTarget>, usize) {
+    let pairs = match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk);
+    let edge_face = edge_faces(sk.faces());
+    let mut moves = vec![Complex64::new(0.0, 0.0); r.s1_disk.len()];
+    let mut targets = Vec::new();
+    for &(i, j) in &pairs {
+        let (from, onto) = r.loop_pair(k, sk, hk, i, j);
+        for t in rim_targets(&from, &onto, sk.faces(), &edge_face) {
+            moves[t.vertex as usize] = t.disk - r.s1_disk[t.vertex as usize];
+            targets.push(t);
+        }
+    }
+    (moves, targets, pairs.len())
+}
+
+/// Moves S1's loops onto those of key surface `k`: matched loops, targets, the harmonic
+/// extension of the moves to S1's free vertices, and the local untangling of the free
+/// vertices of the faces it folds (into the kernel of their ring). Where faces still
+/// fold:
+///
+/// 1. the corner warp: the key surface's loop corners within [`RIM_HALVING_RADIUS`] of
+///    them (S1's corner in S1's disk) become extra points of a landmark warp of its
+///    registered disk (`key.map`, fold-checked steps as in the registration), which
+///    brings them onto S1's corners, the key's landmarks held where they are (corners
+///    that are landmarks or on the boundary are left out); the loops are then carried
+///    again from the warped disk;
+/// 2. then, where faces still fold, the moves of the loop vertices near them are halved,
+///    up to [`RIM_MOVE_HALVINGS`] rounds (a loop vertex whose move was cut is located
+///    where its partial move puts it instead of exactly on the key loop).
+///
+/// # Errors
+/// [`MorphError::Operator`] if the corner warp's interpolation matrix is singular (two
+/// warp points at one place).
+pub(super) fn carry_rims(
+    r: &Rims<'_>,
+    k: usize,
+    mut key: KeyDisk<'_>,
+) -> Result<Carried, MorphError> {
     let mut summary = CreaseSummary {
         loops_s1: r.loops[0].len(),
         loops: r.loops[k].len(),
@@ -94,47 +193,48 @@ pub(super) fn carry_rims(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64])
         ..CreaseSummary::default()
     };
     let Some(ext) = &r.extension else {
-        return Carried {
+        return Ok(Carried {
             query: r.s1_disk.to_vec(),
             targets: Vec::new(),
             summary,
-        };
+        });
     };
-    let pairs = match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk);
-    let edge_face = edge_faces(sk.faces());
-    let zero = Complex64::new(0.0, 0.0);
-    let mut moves = vec![zero; r.s1_disk.len()];
-    let mut targets = Vec::new();
-    for &(i, j) in &pairs {
-        let from = LoopOn {
-            vertices: &r.loops[0][i],
-            disk: r.s1_disk,
-            positions: r.s1.positions(),
-        };
-        let onto = LoopOn {
-            vertices: &r.loops[k][j],
-            disk: hk,
-            positions: sk.positions(),
-        };
-        for t in rim_targets(&from, &onto, sk.faces(), &edge_face) {
-            moves[t.vertex as usize] = t.disk - r.s1_disk[t.vertex as usize];
-            targets.push(t);
+    let sk = key.mesh;
+    // S1's disk with the loop moves `scaled` applied and untangled: the disk, the faces
+    // the extension alone folds, the untangling
+    let place = |scaled: &[Complex64]| {
+        let mut query = moved(r.s1_disk, &ext.extend(scaled));
+        let at_extension = folded(r.s1.faces(), &query, r.sigma).len();
+        let u = untangle(&mut query, r.s1.faces(), &r.rings, &r.free, r.sigma);
+        (query, at_extension, u)
+    };
+    let (mut moves, mut targets, matched) = rim_moves(r, k, sk, key.map);
+    let (mut query, at_extension, mut untangled) = place(&moves);
+    summary.matched = matched;
+    summary.folded_at_full_move = at_extension;
+    let mut folding = folded_centroids(r.s1.faces(), &query, r.sigma);
+    summary.folded_after_untangling = folding.len();
+    if !folding.is_empty() {
+        if let Some((corners, report)) = warp_corners(r, k, &mut key, &folding)? {
+            summary.warped_corners = corners;
+            summary.corner_warp = Some(report);
+            let m;
+            (moves, targets, m) = rim_moves(r, k, sk, key.map);
+            summary.matched = m;
+            (query, _, untangled) = place(&moves);
+            folding = folded_centroids(r.s1.faces(), &query, r.sigma);
         }
     }
-    summary.matched = pairs.len();
     summary.largest_move = moves.iter().map(|d| d.norm()).fold(0.0, f64::max);
     // the share of its move every loop vertex gets: 1, halved (again) near the faces of
-    // S1's moved disk that would fold
+    // S1's moved disk that still fold
     let mut halvings = vec![0u32; r.s1_disk.len()];
-    let mut query = moved(r.s1_disk, &ext.extend(&moves));
-    let mut folded = folded_centroids(r.s1.faces(), &query, r.sigma);
-    summary.folded_at_full_move = folded.len();
     let mut rounds = 0;
-    while !folded.is_empty() && rounds < RIM_MOVE_HALVINGS {
+    while !folding.is_empty() && rounds < RIM_MOVE_HALVINGS {
         rounds += 1;
         for t in &targets {
             let z = r.s1_disk[t.vertex as usize];
-            if folded.iter().any(|&c| (c - z).norm() < RIM_HALVING_RADIUS) {
+            if folding.iter().any(|&c| (c - z).norm() < RIM_HALVING_RADIUS) {
                 halvings[t.vertex as usize] += 1;
             }
         }
@@ -143,10 +243,12 @@ pub(super) fn carry_rims(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64])
             .zip(&halvings)
             .map(|(&m, &h)| m * 0.5f64.powi(h as i32))
             .collect();
-        query = moved(r.s1_disk, &ext.extend(&scaled));
-        folded = folded_centroids(r.s1.faces(), &query, r.sigma);
+        (query, _, untangled) = place(&scaled);
+        folding = folded_centroids(r.s1.faces(), &query, r.sigma);
     }
-    if !folded.is_empty() {
+    summary.untangled_vertices = untangled.moved;
+    summary.untangling_rounds = untangled.rounds;
+    if !folding.is_empty() {
         // still folding: no loop is moved
         query = r.s1_disk.to_vec();
         for t in &targets {
@@ -159,11 +261,63 @@ pub(super) fn carry_rims(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64])
         .fold(1.0, f64::min);
     targets.retain(|t| halvings[t.vertex as usize] == 0);
     summary.rim_vertices = targets.len();
-    Carried {
+    Ok(Carried {
         query,
         targets,
         summary,
+    })
+}
+
+/// The corner warp of [`carry_rims`]: the corners of key surface `k`'s loops whose S1
+/// corner lies within [`RIM_HALVING_RADIUS`] of a centroid in `folding` (and that are
+/// neither landmarks nor on the boundary) are warped onto S1's corners in `key.map`, the
+/// key's landmarks held. Returns the number of corners warped and the warp's report, or
+/// `None` when no corner qualifies (the map is left as it is).
+fn warp_corners(
+    r: &Rims<'_>,
+    k: usize,
+    key: &mut KeyDisk<'_>,
+    folding: &[Complex64],
+) -> Result<Option<(usize, WarpReport)>, MorphError> {
+    let sk = key.mesh;
+    let near = |z: Complex64| folding.iter().any(|&c| (c - z).norm() < RIM_HALVING_RADIUS);
+    let boundary = sk.boundary_flags();
+    let corners: Vec<(u32, u32)> = corner_pairs(r, k, sk, key.map)
+        .into_iter()
+        .filter(|&(a, b)| {
+            near(r.s1_disk[a as usize])
+                && !key.landmarks.contains(&b)
+                && !r.landmarks.contains(&a)
+                && !boundary[b as usize]
+        })
+        .collect();
+    if corners.is_empty() {
+        return Ok(None);
     }
+    // the key's landmarks stay where the registration put them
+    let mut points: Vec<u32> = key.landmarks.to_vec();
+    let mut goals: Vec<Complex64> = points.iter().map(|&v| key.map[v as usize]).collect();
+    for &(a, b) in &corners {
+        points.push(b);
+        goals.push(r.s1_disk[a as usize]);
+    }
+    let area = sk
+        .boundary_loops()
+        .first()
+        .map_or(1.0, |lp| polygon_area_of(lp, key.map));
+    let sigma = if area >= 0.0 { 1.0 } else { -1.0 };
+    let active = vec![true; points.len()];
+    let report = warp_landmarks(
+        key.map,
+        sk.faces(),
+        &points,
+        &goals,
+        &active,
+        sigma,
+        &key.warp,
+    )
+    .map_err(|source| MorphError::Operator { surface: k, source })?;
+    Ok(Some((corners.len(), report)))
 }
 
 /// `disk + delta`.
@@ -174,12 +328,8 @@ fn moved(disk: &[Complex64], delta: &[Complex64]) -> Vec<Complex64> {
 /// The centroids of the faces whose image under `map` is folded or degenerate (against
 /// the orientation `sigma`), as [`crate::folded_faces`] counts them.
 fn folded_centroids(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> Vec<Complex64> {
-    faces
-        .iter()
-        .filter_map(|f| {
-            let [a, b, c] = f.map(|v| map[v as usize]);
-            let area = ((b - a).conj() * (c - a)).im;
-            (!(sigma * area > 0.0)).then_some((a + b + c) / 3.0)
-        })
+    folded(faces, map, sigma)
+        .into_iter()
+        .map(|f| faces[f].iter().map(|&v| map[v as usize]).sum::<Complex64>() / 3.0)
         .collect()
 }

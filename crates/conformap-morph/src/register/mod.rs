@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::MorphError;
 use boundary::{polygon_area, BoundaryEnergy};
 use system::LandmarkSystem;
-use warp::warp_landmarks;
+pub(crate) use warp::warp_landmarks;
 pub use warp::{WarpOptions, WarpReport, WARP_MAX_STEPS, WARP_STEP, WARP_SUPPORT};
 
 /// The landmark weight λ of Eq. 34 by default: `1000`. With `E_D = ½ fᴴ L f` on a unit
