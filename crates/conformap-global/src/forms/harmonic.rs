@@ -8,8 +8,9 @@ use std::time::Instant;
 
 use conformap_mesh::{HomologyBasis, TriMesh};
 use conformap_operators::{
-    cotan_laplacian, Cholesky, CholeskyOptions, FactorStats, LaplacianBlocks, Partition,
+    cotan_laplacian, Cholesky, CholeskyOptions, FactorStats, LaplacianBlocks, Ordering, Partition,
 };
+use rayon::prelude::*;
 
 use crate::forms::cohomology::Cochain;
 use crate::GlobalError;
@@ -40,6 +41,19 @@ fn divergence(mesh: &TriMesh, basis: &HomologyBasis, weights: &[f64], w: &[f64])
         div[b as usize] -= flux;
     }
     div
+}
+
+/// `options` with the elimination order of `part`'s interior vertices by ascending
+/// `rank` (ties by vertex; vertices beyond `rank` last): an order inherited from a related
+/// surface instead of a fresh one (see [`HarmonicFactor::mirrored`]).
+fn inherited(part: &Partition, rank: &[u64], options: &CholeskyOptions) -> CholeskyOptions {
+    let key = |p: usize| {
+        let v = part.interior[p] as usize;
+        (rank.get(v).copied().unwrap_or(u64::MAX), v)
+    };
+    let mut perm: Vec<usize> = (0..part.interior.len()).collect();
+    perm.sort_by_key(|&p| key(p));
+    options.clone().with_ordering(Ordering::Custom(perm))
 }
 
 /// The reduced cotangent Laplacian of a closed surface (one vertex pinned), assembled and
@@ -105,7 +119,13 @@ impl HarmonicFactor {
 
     /// The two half-size factorizations of a symmetric double covering `mesh` (see the type's
     /// docs): `mirror` gives each vertex's mirror image (boundary vertices are their own),
-    /// the first `copy_vertices` vertices are the first copy and the boundary.
+    /// the first `copy_vertices` vertices are the first copy and the boundary. With `rank`
+    /// (per vertex of the first copy, e.g. from the unslit input's ordering, see
+    /// `topology_opt`), both halves are eliminated in that order instead of a fresh
+    /// fill-reducing ordering of each: the Dirichlet half of a slit surface is a principal
+    /// submatrix of the input's Laplacian (the slit vertices removed), which keeps the
+    /// order's fill, and the Neumann half differs by the slits' copies, ranked next to
+    /// their originals.
     ///
     /// # Errors
     /// As [`HarmonicFactor::new`].
@@ -114,6 +134,7 @@ impl HarmonicFactor {
         mirror: &[u32],
         copy_vertices: usize,
         options: &CholeskyOptions,
+        rank: Option<&[u64]>,
     ) -> Result<Self, GlobalError> {
         let t0 = Instant::now();
         let n1 = copy_vertices;
@@ -138,8 +159,15 @@ impl HarmonicFactor {
             LaplacianBlocks::new(&l1, &dirichlet),
         );
         let assemble_ms = ms(t0);
-        let chol_n = Cholesky::factor_with(&bn.ii, options)?;
-        let chol_d = Cholesky::factor_with(&bd.ii, options)?;
+        let (on, od) = match rank {
+            Some(r) => (
+                inherited(&neumann, r, options),
+                inherited(&dirichlet, r, options),
+            ),
+            None => (options.clone(), options.clone()),
+        };
+        let chol_n = Cholesky::factor_with(&bn.ii, &on)?;
+        let chol_d = Cholesky::factor_with(&bd.ii, &od)?;
         Ok(Self {
             kind: Kind::Mirrored(Box::new(MirroredHalves {
                 mirror: mirror.to_vec(),
@@ -263,37 +291,43 @@ impl HarmonicFactor {
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
         let divs: Vec<Vec<f64>> = closed
-            .iter()
+            .par_iter()
             .map(|w| divergence(mesh, basis, weights, w))
             .collect();
         let potentials = self.potentials(&divs);
-        let mut forms = Vec::with_capacity(closed.len());
-        let mut codifferential_residual = 0.0f64;
-        for (i, (w, f)) in closed.iter().zip(&potentials).enumerate() {
-            if let Some(v) = f.iter().position(|x| !x.is_finite()) {
-                return Err(GlobalError::NonFinite {
-                    vertex: v,
-                    stage: "harmonic projection",
-                });
-            }
-            let h: Cochain = basis
-                .edges
-                .halfedge
-                .iter()
-                .zip(w)
-                .map(|(&he, &x)| {
-                    let (a, b) = mesh.halfedge_vertices(he as usize);
-                    x + f[b as usize] - f[a as usize]
-                })
-                .collect();
-            let scale = divs[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let after = divergence(mesh, basis, weights, &h);
-            let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            if scale > 0.0 {
-                codifferential_residual = codifferential_residual.max(res / scale);
-            }
-            forms.push(h);
+        if let Some(v) = potentials
+            .iter()
+            .find_map(|f| f.iter().position(|x| !x.is_finite()))
+        {
+            return Err(GlobalError::NonFinite {
+                vertex: v,
+                stage: "harmonic projection",
+            });
         }
+        // the forms are independent: one per thread
+        let solved: Vec<(Cochain, f64)> = closed
+            .par_iter()
+            .zip(&potentials)
+            .zip(&divs)
+            .map(|((w, f), div)| {
+                let h: Cochain = basis
+                    .edges
+                    .halfedge
+                    .iter()
+                    .zip(w)
+                    .map(|(&he, &x)| {
+                        let (a, b) = mesh.halfedge_vertices(he as usize);
+                        x + f[b as usize] - f[a as usize]
+                    })
+                    .collect();
+                let scale = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                let after = divergence(mesh, basis, weights, &h);
+                let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                (h, if scale > 0.0 { res / scale } else { 0.0 })
+            })
+            .collect();
+        let codifferential_residual = solved.iter().fold(0.0f64, |m, (_, r)| m.max(*r));
+        let forms = solved.into_iter().map(|(h, _)| h).collect();
         Ok(HarmonicSolve {
             forms,
             codifferential_residual,

@@ -55,6 +55,31 @@ pub const MAX_HALVINGS: usize = 40;
 /// flat at every optimum; the floor keeps the step finite there.
 pub const HESSIAN_FLOOR: f64 = 1e-10;
 
+/// Tangent directions whose Hessian eigenvalue is below this fraction of the largest in
+/// absolute value are searched on their great circle instead of by the Newton step:
+/// `1e-3`. The rotation `φ → e^{iθ} φ` of the form is nearly flat (measured on
+/// armadillo's slit surfaces: `|λ| ≈ 1e-4` of the largest, slightly negative, the next
+/// eigenvalue `1e-2`); a Newton step along it is `g·v/|λ|`, large and meaningless for a
+/// non-quadratic direction, and the saddle-free search crawled along it, one rotation of
+/// about 0.1 per step, the gradient falling by ~10 % per step (20–30 Newton steps per
+/// start). On the circle the energy is a trigonometric polynomial of degree 2 in `2θ`
+/// ([`EnergyModel::great_circle`], one `O(F n)` pass): its exact minimum is one step.
+/// Only for models with a great circle (the direct sums); the moments keep the plain
+/// saddle-free step.
+pub const FLAT_RELATIVE: f64 = 1e-3;
+
+/// A Newton step's Hessian is kept for the next step when the step was a full one (the
+/// line search's first trial accepted) and the gradient norm fell below this fraction of
+/// its value before the step: `0.25`. That is the local regime, where the Hessian barely
+/// changes between iterates and the step with the kept one (a chord step) contracts the
+/// gradient nearly as fast as a fresh one; the next step that contracts less gets a fresh
+/// Hessian. Only for models whose gradient is cheap ([`EnergyModel::cheap_gradient`]: the
+/// direct sums, `O(F n)` against `O(F n²)` per Hessian): on armadillo's coarse level and
+/// polish this cut the Hessians per search severalfold with the same optima
+/// (docs/benchmarks.md, issue 23). Far from an optimum (damped steps) every step gets a
+/// fresh Hessian, as before, so a start descends into the same basin.
+pub const HESSIAN_REUSE_CONTRACTION: f64 = 0.25;
+
 /// The energy and, optionally, gradient and Hessian at a unit `μ`.
 pub struct Evaluation {
     /// `E(μ)`.
@@ -96,6 +121,29 @@ pub trait EnergyModel: Sync {
     fn energy(&self, mu: &[f64]) -> f64;
     /// The sums of [`Aggregates`] at a unit `μ`.
     fn aggregates(&self, mu: &[f64]) -> Aggregates;
+    /// `E` and `∇E = 4 (R − ρ μ)` at a unit `μ` (see the module docs), without the
+    /// Hessian. Default: from [`Self::aggregates`].
+    fn first_order(&self, mu: &[f64]) -> (f64, Vec<f64>) {
+        let a = self.aggregates(mu);
+        let gradient = (0..mu.len())
+            .map(|i| 4.0 * (a.big_r[i] - a.rho * mu[i]))
+            .collect();
+        (a.energy, gradient)
+    }
+    /// Whether [`Self::first_order`] costs much less than [`Self::aggregates`] (then a
+    /// search may keep a Hessian across steps, see [`HESSIAN_REUSE_CONTRACTION`], and
+    /// searches the near-flat directions on their great circle, see [`FLAT_RELATIVE`]).
+    /// Default `false`.
+    fn cheap_gradient(&self) -> bool {
+        false
+    }
+    /// The energy on the great circle `cos θ μ + sin θ w` (unit, orthogonal `μ` and `w`)
+    /// as the six sums `c` of `E(φ) = c₀ + 2c₁ cos φ + 2c₂ sin φ + c₃ cos²φ + c₄ sin²φ +
+    /// 2c₅ cos φ sin φ`, `φ = 2θ` (each face's area is `p + q cos φ + r sin φ` there).
+    /// Default `None` (no such form).
+    fn great_circle(&self, _mu: &[f64], _w: &[f64]) -> Option<[f64; 6]> {
+        None
+    }
 }
 
 impl EnergyModel for Moments {
@@ -125,6 +173,15 @@ impl EnergyModel for FaceForms {
     }
     fn aggregates(&self, mu: &[f64]) -> Aggregates {
         FaceForms::aggregates(self, mu)
+    }
+    fn first_order(&self, mu: &[f64]) -> (f64, Vec<f64>) {
+        FaceForms::first_order(self, mu)
+    }
+    fn cheap_gradient(&self) -> bool {
+        true
+    }
+    fn great_circle(&self, mu: &[f64], w: &[f64]) -> Option<[f64; 6]> {
+        Some(FaceForms::great_circle(self, mu, w))
     }
 }
 
@@ -173,6 +230,12 @@ pub struct LocalOptimum {
     pub iterations: usize,
     /// Whether the gradient test was met.
     pub converged: bool,
+    /// Hessians evaluated (at most `iterations + 1`; fewer when kept across steps, see
+    /// [`HESSIAN_REUSE_CONTRACTION`], or seeded, see [`local_search_seeded`]).
+    pub hessians: usize,
+    /// The last Hessian the search used (row-major, ambient coordinates): a seed for the
+    /// search on a finer level.
+    pub hessian: Vec<f64>,
 }
 
 fn normalized(v: &[f64]) -> Vec<f64> {
@@ -183,18 +246,48 @@ fn normalized(v: &[f64]) -> Vec<f64> {
 /// Saddle-free Newton on the unit sphere from `start`, minimizing `E` (`maximize`:
 /// minimizing `−E`). The step solves with `|P H P|` (eigenvalues in absolute value,
 /// floored), `P = I − μμᵀ`, restricted to the tangent space; retraction by normalization,
-/// Armijo backtracking.
+/// Armijo backtracking. In the local regime the Hessian is kept across steps (see
+/// [`HESSIAN_REUSE_CONTRACTION`]); the gradient is always fresh, so the tests are exact.
 pub fn local_search<M: EnergyModel + ?Sized>(
     moments: &M,
     start: &[f64],
     maximize: bool,
+) -> LocalOptimum {
+    local_search_seeded(moments, start, maximize, None)
+}
+
+/// [`local_search`] whose first step uses the Hessian `seed` (ambient coordinates, as
+/// [`LocalOptimum::hessian`]) instead of a fresh one, when the model's gradient is cheap
+/// ([`EnergyModel::cheap_gradient`]): a start refined from a coarser level's optimum takes
+/// that level's last Hessian. Near the optimum the sampled faces' Hessian is close to all
+/// faces' one, so the first steps are chord steps at `O(F n)` each; the first step that
+/// contracts the gradient by less than [`HESSIAN_REUSE_CONTRACTION`] gets a fresh Hessian.
+pub fn local_search_seeded<M: EnergyModel + ?Sized>(
+    moments: &M,
+    start: &[f64],
+    maximize: bool,
+    seed: Option<&[f64]>,
 ) -> LocalOptimum {
     let n = moments.dim();
     // the gradient test, floored at rounding level of the moments' terms (see `ROUNDING`)
     let tol = |e: f64| GRADIENT_TOL * e.max(ROUNDING * moments.scale());
     let sign = if maximize { -1.0 } else { 1.0 };
     let mut mu = normalized(start);
-    let mut ev = evaluate(moments, &mu);
+    let (mut ev, mut hessians) = match seed {
+        Some(h) if moments.cheap_gradient() && h.len() == n * n => {
+            let (energy, gradient) = moments.first_order(&mu);
+            let hessian = h.to_vec();
+            (
+                Evaluation {
+                    energy,
+                    gradient,
+                    hessian,
+                },
+                0,
+            )
+        }
+        _ => (evaluate(moments, &mu), 1),
+    };
     for it in 0..MAX_NEWTON_ITERATIONS {
         let g: Vec<f64> = ev.gradient.iter().map(|x| sign * x).collect();
         let gnorm = g.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -204,6 +297,8 @@ pub fn local_search<M: EnergyModel + ?Sized>(
                 energy: ev.energy,
                 iterations: it,
                 converged: true,
+                hessians,
+                hessian: ev.hessian,
             };
         }
         // P H P
@@ -222,7 +317,14 @@ pub fn local_search<M: EnergyModel + ?Sized>(
         let (eig, vecs) = symmetric_eigen(&ph, n);
         let top = eig.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let floor = (HESSIAN_FLOOR * top).max(f64::MIN_POSITIVE);
+        // near-flat directions go to the great-circle search when the model has one
+        let flat_below = if moments.cheap_gradient() {
+            FLAT_RELATIVE * top
+        } else {
+            0.0
+        };
         let mut d = vec![0.0; n];
+        let mut flat = vec![0.0; n];
         for (k, &lam) in eig.iter().enumerate() {
             let v: Vec<f64> = (0..n).map(|i| vecs[i * n + k]).collect();
             let along: f64 = (0..n).map(|i| v[i] * mu[i]).sum();
@@ -230,36 +332,71 @@ pub fn local_search<M: EnergyModel + ?Sized>(
                 continue; // the normal direction μ itself
             }
             let gv: f64 = (0..n).map(|i| g[i] * v[i]).sum();
+            if lam.abs() < flat_below {
+                for i in 0..n {
+                    flat[i] -= gv * v[i];
+                }
+                continue;
+            }
             let scale = gv / lam.abs().max(floor);
             for i in 0..n {
                 d[i] -= scale * v[i];
             }
         }
         let slope: f64 = (0..n).map(|i| g[i] * d[i]).sum();
-        if -slope <= NEWTON_DECREMENT_TOL * ev.energy.abs() {
+        let flat_norm = flat.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let curved = -slope > NEWTON_DECREMENT_TOL * ev.energy.abs();
+        if !curved && flat_norm <= tol(ev.energy) {
             // the Newton model promises no decrease the energy can resolve
             return LocalOptimum {
                 mu,
                 energy: ev.energy,
                 iterations: it,
                 converged: true,
+                hessians,
+                hessian: ev.hessian,
             };
         }
-        let mut t = 1.0;
-        let mut accepted = None;
-        for _ in 0..MAX_HALVINGS {
-            let trial: Vec<f64> = normalized(&(0..n).map(|i| mu[i] + t * d[i]).collect::<Vec<_>>());
-            let et = moments.energy(&trial);
-            if sign * et <= sign * ev.energy + ARMIJO * t * slope {
-                accepted = Some(trial);
-                break;
+        let mut accepted = Some((mu.clone(), false));
+        let mut moved = false;
+        if curved {
+            accepted = None;
+            let mut t = 1.0;
+            for halvings in 0..MAX_HALVINGS {
+                let trial: Vec<f64> =
+                    normalized(&(0..n).map(|i| mu[i] + t * d[i]).collect::<Vec<_>>());
+                let et = moments.energy(&trial);
+                if sign * et <= sign * ev.energy + ARMIJO * t * slope {
+                    accepted = Some((trial, halvings == 0));
+                    moved = true;
+                    break;
+                }
+                t *= 0.5;
             }
-            t *= 0.5;
+        }
+        if let Some((next, _)) = accepted.as_mut() {
+            if flat_norm > tol(ev.energy) {
+                if let Some(rotated) = circle_step(moments, next, &flat, sign, ev.energy) {
+                    *next = rotated;
+                    moved = true;
+                }
+            }
+        }
+        if !moved {
+            // neither the Newton step nor the great circle resolves a decrease
+            return LocalOptimum {
+                mu,
+                energy: ev.energy,
+                iterations: it,
+                converged: true,
+                hessians,
+                hessian: ev.hessian,
+            };
         }
         match accepted {
-            Some(next) => {
+            Some((next, full_step)) => {
                 mu = next;
-                ev = evaluate(moments, &mu);
+                ev = next_evaluation(moments, &mu, ev, (full_step, gnorm), &mut hessians);
             }
             None => {
                 return LocalOptimum {
@@ -267,6 +404,8 @@ pub fn local_search<M: EnergyModel + ?Sized>(
                     energy: ev.energy,
                     iterations: it,
                     converged: gnorm <= 1e3 * tol(ev.energy),
+                    hessians,
+                    hessian: ev.hessian,
                 }
             }
         }
@@ -276,5 +415,117 @@ pub fn local_search<M: EnergyModel + ?Sized>(
         energy: ev.energy,
         iterations: MAX_NEWTON_ITERATIONS,
         converged: false,
+        hessians,
+        hessian: ev.hessian,
     }
+}
+
+/// The minimum of `sign · E` on the great circle through the unit `mu` in the tangent
+/// direction of `flat` (projected onto the tangent space at `mu`), from the model's exact
+/// trigonometric form of the energy there ([`EnergyModel::great_circle`]); `None` when the
+/// model has none or the circle offers no decrease the energy can resolve (below
+/// [`NEWTON_DECREMENT_TOL`] of `energy`).
+fn circle_step<M: EnergyModel + ?Sized>(
+    model: &M,
+    mu: &[f64],
+    flat: &[f64],
+    sign: f64,
+    energy: f64,
+) -> Option<Vec<f64>> {
+    let along: f64 = flat.iter().zip(mu).map(|(a, b)| a * b).sum();
+    let w = normalized(
+        &flat
+            .iter()
+            .zip(mu)
+            .map(|(f, m)| f - along * m)
+            .collect::<Vec<_>>(),
+    );
+    if !w.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let c = model.great_circle(mu, &w)?;
+    let theta = circle_minimum(&c.map(|x| sign * x));
+    let value = |phi: f64| circle_energy(&c, phi);
+    let gain = sign * (value(0.0) - value(2.0 * theta));
+    if !(gain > NEWTON_DECREMENT_TOL * energy.abs()) {
+        return None;
+    }
+    let (s, co) = theta.sin_cos();
+    Some(normalized(
+        &mu.iter()
+            .zip(&w)
+            .map(|(m, x)| co * m + s * x)
+            .collect::<Vec<_>>(),
+    ))
+}
+
+/// `E(φ) = c₀ + 2c₁ cos φ + 2c₂ sin φ + c₃ cos²φ + c₄ sin²φ + 2c₅ cos φ sin φ`, the energy
+/// on a great circle at angle `θ = φ/2` (see [`EnergyModel::great_circle`]).
+fn circle_energy(c: &[f64; 6], phi: f64) -> f64 {
+    let (s, co) = phi.sin_cos();
+    c[0] + 2.0 * c[1] * co + 2.0 * c[2] * s + c[3] * co * co + c[4] * s * s + 2.0 * c[5] * co * s
+}
+
+/// Samples of `φ ∈ (−π, π]` before the Newton refinement of [`circle_minimum`]: `64`. The
+/// energy on a great circle is a trigonometric polynomial of degree 2 in `φ`: at most two
+/// minima, each far wider than `2π/64`.
+pub const CIRCLE_SAMPLES: usize = 64;
+
+/// The angle `θ ∈ (−π/2, π/2]` minimizing [`circle_energy`] at `φ = 2θ`: the best of
+/// [`CIRCLE_SAMPLES`] samples refined by Newton steps on `φ` (kept only while they descend).
+fn circle_minimum(c: &[f64; 6]) -> f64 {
+    let step = std::f64::consts::TAU / CIRCLE_SAMPLES as f64;
+    let mut phi = (0..CIRCLE_SAMPLES)
+        .map(|k| -std::f64::consts::PI + step * (k + 1) as f64)
+        .min_by(|a, b| circle_energy(c, *a).total_cmp(&circle_energy(c, *b)))
+        .unwrap_or(0.0);
+    // exactly 0 when the circle offers nothing: keep the point
+    if circle_energy(c, phi) >= circle_energy(c, 0.0) {
+        phi = 0.0;
+    }
+    for _ in 0..8 {
+        let (s, co) = phi.sin_cos();
+        let d1 = -2.0 * c[1] * s
+            + 2.0 * c[2] * co
+            + 2.0 * (c[4] - c[3]) * s * co
+            + 2.0 * c[5] * (co * co - s * s);
+        let d2 = -2.0 * c[1] * co - 2.0 * c[2] * s + 2.0 * (c[4] - c[3]) * (co * co - s * s)
+            - 8.0 * c[5] * s * co;
+        if !(d2 > 0.0) {
+            break;
+        }
+        let next = phi - d1 / d2;
+        if !(circle_energy(c, next) < circle_energy(c, phi)) {
+            break;
+        }
+        phi = next;
+    }
+    0.5 * phi
+}
+
+/// The evaluation at the new iterate `mu` after a step from the point evaluated in `last`
+/// (`full_step`: the line search's first trial accepted; `gnorm`: the gradient norm before
+/// the step): the fresh energy and gradient with `last`'s Hessian when the step was in the
+/// local regime (see [`HESSIAN_REUSE_CONTRACTION`]), else a full evaluation (counted in
+/// `hessians`).
+fn next_evaluation<M: EnergyModel + ?Sized>(
+    model: &M,
+    mu: &[f64],
+    last: Evaluation,
+    (full_step, gnorm): (bool, f64),
+    hessians: &mut usize,
+) -> Evaluation {
+    if full_step && model.cheap_gradient() {
+        let (energy, gradient) = model.first_order(mu);
+        let g_new = gradient.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if g_new <= HESSIAN_REUSE_CONTRACTION * gnorm {
+            return Evaluation {
+                energy,
+                gradient,
+                hessian: last.hessian,
+            };
+        }
+    }
+    *hessians += 1;
+    evaluate(model, mu)
 }
