@@ -48,8 +48,8 @@ pub const COARSE_FACES: usize = 16384;
 /// saddle-free Newton takes 10–20 damped steps per start (measured on armadillo's slit
 /// surfaces at genus 12 and 15, issue 23), which need only the landscape's rough shape: on
 /// 4k faces each costs a quarter of a coarse step, and from the coarsest optimum the coarse
-/// level converges in a few (docs/benchmarks.md, issue 23: the same optima, energies equal
-/// to 4 digits). Not used without a coarse level, so the searches of smaller meshes are
+/// level converges in 7–11 (docs/benchmarks.md, issue 23, second pass: armadillo's step 2
+/// the same optimum, step 1 a lower one, −0.16 %). Not used without a coarse level, so the searches of smaller meshes are
 /// unchanged.
 pub const COARSEST_FACES: usize = 4096;
 

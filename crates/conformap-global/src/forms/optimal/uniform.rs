@@ -81,9 +81,9 @@ pub const CIRCLE_SHARE: f64 = 0.5;
 /// changes between iterates and the step with the kept one (a chord step) contracts the
 /// gradient nearly as fast as a fresh one; the next step that contracts less gets a fresh
 /// Hessian. Only for models whose gradient is cheap ([`EnergyModel::cheap_gradient`]: the
-/// direct sums, `O(F n)` against `O(F n²)` per Hessian): on armadillo's coarse level and
-/// polish this cut the Hessians per search severalfold with the same optima
-/// (docs/benchmarks.md, issue 23). Far from an optimum (damped steps) every step gets a
+/// direct sums, `O(F n)` against `O(F n²)` per Hessian): with the great-circle steps and the
+/// seeded levels, armadillo's searches take about half as many Hessians as Newton steps
+/// (docs/benchmarks.md, issue 23, second pass). Far from an optimum (damped steps) every step gets a
 /// fresh Hessian, as before, so a start descends into the same basin.
 pub const HESSIAN_REUSE_CONTRACTION: f64 = 0.25;
 
