@@ -1,6 +1,6 @@
 //! Tall-and-skinny products over the edges or faces of a surface, block by block: the
-//! `n × n` Gram-type sums `Σ_r l_r r_rᵀ` of the wedge and Gram matrices (the area form of
-//! `optimal/faces.rs` and the holomorphic basis of `periods.rs` use the same blocks).
+//! `n × n` Gram-type sums `Σ_r l_r r_rᵀ` of the wedge and Gram matrices and the area form,
+//! and the `rows × n` product of the harmonic forms with the conjugation matrix.
 //!
 //! The factors are never stored whole (`rows × n` values, 62 MB per matrix at genus 15 on
 //! armadillo's double covering): each block of [`PRODUCT_BLOCK_ROWS`] rows is filled,
@@ -57,4 +57,61 @@ where
         }
     }
     total
+}
+
+/// `Lᵀ R` (`n × n`) for two `rows × n` column-major matrices, block by block of rows.
+pub(crate) fn transpose_times(l: &Mat<f64>, r: &Mat<f64>) -> Mat<f64> {
+    let n = l.ncols();
+    let parts: Vec<Mat<f64>> = blocks(l.nrows())
+        .par_iter()
+        .map(|&(start, len)| {
+            let mut out = Mat::<f64>::zeros(n, r.ncols());
+            matmul(
+                out.as_mut(),
+                Accum::Replace,
+                l.as_ref().subrows(start, len).transpose(),
+                r.as_ref().subrows(start, len),
+                1.0,
+                Par::Seq,
+            );
+            out
+        })
+        .collect();
+    let mut total = Mat::<f64>::zeros(n, r.ncols());
+    for p in &parts {
+        for j in 0..r.ncols() {
+            for i in 0..n {
+                total[(i, j)] += p[(i, j)];
+            }
+        }
+    }
+    total
+}
+
+/// `M B` for the `rows × n` column-major `m` and the `n × n` `b` (row-major), block by
+/// block: one thread per block of rows, each product on one thread.
+pub(crate) fn times_small(m: &Mat<f64>, b: &[f64]) -> Mat<f64> {
+    let (rows, n) = (m.nrows(), m.ncols());
+    let bm = Mat::<f64>::from_fn(n, n, |i, j| b[i * n + j]);
+    let parts: Vec<Mat<f64>> = blocks(rows)
+        .par_iter()
+        .map(|&(start, len)| {
+            let mut out = Mat::<f64>::zeros(len, n);
+            matmul(
+                out.as_mut(),
+                Accum::Replace,
+                m.as_ref().subrows(start, len),
+                bm.as_ref(),
+                1.0,
+                Par::Seq,
+            );
+            out
+        })
+        .collect();
+    let mut out = Mat::<f64>::zeros(rows, n);
+    for (&(start, len), p) in blocks(rows).iter().zip(&parts) {
+        let mut rows_out = out.as_mut().subrows_mut(start, len);
+        rows_out.copy_from(p);
+    }
+    out
 }

@@ -19,7 +19,7 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
-use crate::forms::blocked::blocks;
+use crate::forms::blocked::{times_small, transpose_times};
 use crate::forms::dense::{symmetric_eigen, symmetric_function};
 use crate::forms::optimal::moments::Aggregates;
 use crate::forms::periods::ComplexCochain;
@@ -158,56 +158,24 @@ impl FaceForms {
     ) -> Result<Self, GlobalError> {
         let n = forms.len();
         let val = |k: usize, h: usize| edges.sign(h) * forms[k][edges.edge_of[h] as usize];
-        let areas = conformap_operators::face_areas(mesh);
-        let surface_area: f64 = areas[..faces].iter().sum();
-        let s: Vec<f64> = areas[..faces].iter().map(|x| x / surface_area).collect();
-        // pass 1, block by block: the edge values `[Re a, Im a, Re b, Im b]` and the block's
-        // share of X = Re aᵀ Im b − Im aᵀ Re b, while the block is in cache
-        let raw: Vec<([Mat<f64>; 4], Mat<f64>)> = blocks(faces)
-            .par_iter()
-            .map(|&(start, len)| {
-                let mut m: [Mat<f64>; 4] = std::array::from_fn(|_| Mat::<f64>::zeros(len, n));
-                for k in 0..n {
-                    for r in 0..len {
-                        let f = start + r;
-                        let (a, b) = (val(k, 3 * f), -val(k, 3 * f + 2));
-                        m[0][(r, k)] = a.re;
-                        m[1][(r, k)] = a.im;
-                        m[2][(r, k)] = b.re;
-                        m[3][(r, k)] = b.im;
-                    }
-                }
-                let mut x = Mat::<f64>::zeros(n, n);
-                matmul(
-                    x.as_mut(),
-                    Accum::Replace,
-                    m[0].transpose(),
-                    m[3].as_ref(),
-                    1.0,
-                    Par::Seq,
-                );
-                matmul(
-                    x.as_mut(),
-                    Accum::Add,
-                    m[1].transpose(),
-                    m[2].as_ref(),
-                    -1.0,
-                    Par::Seq,
-                );
-                (m, x)
-            })
-            .collect();
-        // C = Σ_f Q_f = ¼ (X + Xᵀ)
-        let mut x = Mat::<f64>::zeros(n, n);
-        for (_, part) in &raw {
-            for j in 0..n {
-                for i in 0..n {
-                    x[(i, j)] += part[(i, j)];
-                }
+        let (mut ar, mut ai) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
+        let (mut br, mut bi) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
+        for k in 0..n {
+            for f in 0..faces {
+                let (a, b) = (val(k, 3 * f), -val(k, 3 * f + 2));
+                ar[(f, k)] = a.re;
+                ai[(f, k)] = a.im;
+                br[(f, k)] = b.re;
+                bi[(f, k)] = b.im;
             }
         }
+        // C = Σ_f Q_f = ¼ (X + Xᵀ), X = Re aᵀ Im b − Im aᵀ Re b
+        let (x, y) = rayon::join(|| transpose_times(&ar, &bi), || transpose_times(&ai, &br));
         let c: Vec<f64> = (0..n * n)
-            .map(|k| 0.25 * (x[(k / n, k % n)] + x[(k % n, k / n)]))
+            .map(|k| {
+                let (i, j) = (k / n, k % n);
+                0.25 * (x[(i, j)] - y[(i, j)] + x[(j, i)] - y[(j, i)])
+            })
             .collect();
         let (eig, _) = symmetric_eigen(&c, n);
         let (lo, hi) = eig
@@ -218,55 +186,24 @@ impl FaceForms {
                 reason: "the layout area is not a positive definite form of the coefficients",
             });
         }
-        let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
-        let w_inv = symmetric_function(&c, n, f64::sqrt);
-        let wm = Mat::<f64>::from_fn(n, n, |i, j| w[i * n + j]);
-        // pass 2, block by block: the basis forms' energies (basis form k:
-        // a_f = ½ Im(conj(a_fk) b_fk) over its total area C_kk) and the whitened values
-        let done: Vec<([Mat<f64>; 4], Vec<f64>)> = raw
-            .into_par_iter()
-            .zip(blocks(faces))
-            .map(|((m, _), (start, len))| {
-                let energy = (0..n)
-                    .map(|k| {
-                        let (a_r, a_i) = (m[0].col_as_slice(k), m[1].col_as_slice(k));
-                        let (b_r, b_i) = (m[2].col_as_slice(k), m[3].col_as_slice(k));
-                        let total = c[k * n + k];
-                        (0..len)
-                            .map(|r| {
-                                (0.5 * (a_r[r] * b_i[r] - a_i[r] * b_r[r]) / total - s[start + r])
-                                    .powi(2)
-                            })
-                            .sum::<f64>()
-                    })
-                    .collect();
-                let whitened = m.map(|mm| {
-                    let mut out = Mat::<f64>::zeros(len, n);
-                    matmul(
-                        out.as_mut(),
-                        Accum::Replace,
-                        mm.as_ref(),
-                        wm.as_ref(),
-                        1.0,
-                        Par::Seq,
-                    );
-                    out
-                });
-                (whitened, energy)
+        let areas = conformap_operators::face_areas(mesh);
+        let surface_area: f64 = areas[..faces].iter().sum();
+        let s: Vec<f64> = areas[..faces].iter().map(|x| x / surface_area).collect();
+        // basis form k: a_f = ½ Im(conj(a_fk) b_fk) over its total area C_kk
+        let basis_energy = (0..n)
+            .map(|k| {
+                let (a_r, a_i) = (ar.col_as_slice(k), ai.col_as_slice(k));
+                let (b_r, b_i) = (br.col_as_slice(k), bi.col_as_slice(k));
+                let total = c[k * n + k];
+                (0..faces)
+                    .map(|f| (0.5 * (a_r[f] * b_i[f] - a_i[f] * b_r[f]) / total - s[f]).powi(2))
+                    .sum()
             })
             .collect();
-        let mut basis_energy = vec![0.0; n];
-        let mut full: [Mat<f64>; 4] = std::array::from_fn(|_| Mat::<f64>::zeros(faces, n));
-        for ((start, len), (parts, energy)) in blocks(faces).into_iter().zip(done) {
-            for (total, e) in basis_energy.iter_mut().zip(&energy) {
-                *total += e;
-            }
-            for (dst, src) in full.iter_mut().zip(&parts) {
-                let mut rows = dst.as_mut().subrows_mut(start, len);
-                rows.copy_from(src);
-            }
-        }
-        let [ar, ai, br, bi] = full;
+        let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
+        let w_inv = symmetric_function(&c, n, f64::sqrt);
+        let whiten = |m: &Mat<f64>| times_small(m, &w);
+        let (ar, ai, br, bi) = (whiten(&ar), whiten(&ai), whiten(&br), whiten(&bi));
         Ok(Self {
             n,
             ar,
