@@ -92,13 +92,15 @@ pub fn wedge_and_gram(
 ) -> (Vec<f64>, Vec<f64>) {
     let n = h.len();
     let e = &basis.edges;
-    let on = |he: usize, k: usize| e.sign(he) * h[k][e.edge_of[he] as usize];
     let x = inner_products(faces, n, |start, len, mut a1, mut a2| {
-        for k in 0..n {
-            for r in 0..len {
-                let f = start + r;
-                a1[(r, k)] = on(3 * f, k);
-                a2[(r, k)] = -on(3 * f + 2, k);
+        // each face's two edges and orientations, looked up once for all forms
+        let at: Vec<[(usize, f64); 2]> = (start..start + len)
+            .map(|f| [3 * f, 3 * f + 2].map(|he| (e.edge_of[he] as usize, e.sign(he))))
+            .collect();
+        for (k, form) in h.iter().enumerate() {
+            for (r, &[(e1, s1), (e2, s2)]) in at.iter().enumerate() {
+                a1[(r, k)] = s1 * form[e1];
+                a2[(r, k)] = -(s2 * form[e2]);
             }
         }
     });

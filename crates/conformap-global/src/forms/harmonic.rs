@@ -31,11 +31,22 @@ pub struct HarmonicSolve {
     pub solve_ms: f64,
 }
 
-/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)`.
-fn divergence(mesh: &TriMesh, basis: &HomologyBasis, weights: &[f64], w: &[f64]) -> Vec<f64> {
-    let mut div = vec![0.0; mesh.num_vertices()];
-    for (e, &h) in basis.edges.halfedge.iter().enumerate() {
-        let (a, b) = mesh.halfedge_vertices(h as usize);
+/// The vertices `(from, to)` of each edge's reference half-edge, looked up once for all
+/// the forms of a projection.
+fn edge_ends(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<(u32, u32)> {
+    basis
+        .edges
+        .halfedge
+        .iter()
+        .map(|&h| mesh.halfedge_vertices(h as usize))
+        .collect()
+}
+
+/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)`, with `ends` each edge's reference
+/// half-edge's vertices ([`edge_ends`]).
+fn divergence(vertices: usize, ends: &[(u32, u32)], weights: &[f64], w: &[f64]) -> Vec<f64> {
+    let mut div = vec![0.0; vertices];
+    for (e, &(a, b)) in ends.iter().enumerate() {
         let flux = weights[e] * w[e];
         div[a as usize] += flux;
         div[b as usize] -= flux;
@@ -290,9 +301,10 @@ impl HarmonicFactor {
         closed: &[Cochain],
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
+        let ends = edge_ends(mesh, basis);
         let divs: Vec<Vec<f64>> = closed
             .par_iter()
-            .map(|w| divergence(mesh, basis, weights, w))
+            .map(|w| divergence(mesh.num_vertices(), &ends, weights, w))
             .collect();
         let potentials = self.potentials(&divs);
         if let Some(v) = potentials
@@ -310,18 +322,13 @@ impl HarmonicFactor {
             .zip(&potentials)
             .zip(&divs)
             .map(|((w, f), div)| {
-                let h: Cochain = basis
-                    .edges
-                    .halfedge
+                let h: Cochain = ends
                     .iter()
                     .zip(w)
-                    .map(|(&he, &x)| {
-                        let (a, b) = mesh.halfedge_vertices(he as usize);
-                        x + f[b as usize] - f[a as usize]
-                    })
+                    .map(|(&(a, b), &x)| x + f[b as usize] - f[a as usize])
                     .collect();
                 let scale = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                let after = divergence(mesh, basis, weights, &h);
+                let after = divergence(mesh.num_vertices(), &ends, weights, &h);
                 let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 (h, if scale > 0.0 { res / scale } else { 0.0 })
             })

@@ -157,16 +157,24 @@ impl FaceForms {
         faces: usize,
     ) -> Result<Self, GlobalError> {
         let n = forms.len();
-        let val = |k: usize, h: usize| edges.sign(h) * forms[k][edges.edge_of[h] as usize];
         let (mut ar, mut ai) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
         let (mut br, mut bi) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
-        for k in 0..n {
-            for f in 0..faces {
-                let (a, b) = (val(k, 3 * f), -val(k, 3 * f + 2));
-                ar[(f, k)] = a.re;
-                ai[(f, k)] = a.im;
-                br[(f, k)] = b.re;
-                bi[(f, k)] = b.im;
+        // each face's two edges and orientations, looked up once for all forms
+        let at: Vec<[(usize, f64); 2]> = (0..faces)
+            .map(|f| [3 * f, 3 * f + 2].map(|h| (edges.edge_of[h] as usize, edges.sign(h))))
+            .collect();
+        for (k, form) in forms.iter().enumerate() {
+            let (c0, c1) = (ar.col_as_slice_mut(k), ai.col_as_slice_mut(k));
+            for (r, &[(e1, s1), _]) in at.iter().enumerate() {
+                let a = s1 * form[e1];
+                c0[r] = a.re;
+                c1[r] = a.im;
+            }
+            let (c2, c3) = (br.col_as_slice_mut(k), bi.col_as_slice_mut(k));
+            for (r, &[_, (e2, s2)]) in at.iter().enumerate() {
+                let b = -(s2 * form[e2]);
+                c2[r] = b.re;
+                c3[r] = b.im;
             }
         }
         // C = Σ_f Q_f = ¼ (X + Xᵀ), X = Re aᵀ Im b − Im aᵀ Re b
