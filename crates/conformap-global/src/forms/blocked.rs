@@ -88,30 +88,23 @@ pub(crate) fn transpose_times(l: &Mat<f64>, r: &Mat<f64>) -> Mat<f64> {
     total
 }
 
-/// `M B` for the `rows × n` column-major `m` and the `n × n` `b` (row-major), block by
-/// block: one thread per block of rows, each product on one thread.
-pub(crate) fn times_small(m: &Mat<f64>, b: &[f64]) -> Mat<f64> {
-    let (rows, n) = (m.nrows(), m.ncols());
+/// `M ← M B` for the `rows × n` column-major `m` and the `n × n` `b` (row-major), in place,
+/// block by block of rows: one thread per block, each product on one thread from a copy of
+/// the block (no second `rows × n` matrix).
+pub(crate) fn times_small_in_place(m: &mut Mat<f64>, b: &[f64]) {
+    let n = m.ncols();
     let bm = Mat::<f64>::from_fn(n, n, |i, j| b[i * n + j]);
-    let parts: Vec<Mat<f64>> = blocks(rows)
-        .par_iter()
-        .map(|&(start, len)| {
-            let mut out = Mat::<f64>::zeros(len, n);
+    m.as_mut()
+        .par_row_chunks_mut(PRODUCT_BLOCK_ROWS)
+        .for_each(|block| {
+            let copy = block.to_owned();
             matmul(
-                out.as_mut(),
+                block,
                 Accum::Replace,
-                m.as_ref().subrows(start, len),
+                copy.as_ref(),
                 bm.as_ref(),
                 1.0,
                 Par::Seq,
             );
-            out
-        })
-        .collect();
-    let mut out = Mat::<f64>::zeros(rows, n);
-    for (&(start, len), p) in blocks(rows).iter().zip(&parts) {
-        let mut rows_out = out.as_mut().subrows_mut(start, len);
-        rows_out.copy_from(p);
-    }
-    out
+        });
 }

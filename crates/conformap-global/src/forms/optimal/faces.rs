@@ -19,7 +19,7 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
-use crate::forms::blocked::{times_small, transpose_times};
+use crate::forms::blocked::{times_small_in_place, transpose_times};
 use crate::forms::dense::{symmetric_eigen, symmetric_function};
 use crate::forms::optimal::moments::Aggregates;
 use crate::forms::periods::ComplexCochain;
@@ -210,8 +210,9 @@ impl FaceForms {
             .collect();
         let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
         let w_inv = symmetric_function(&c, n, f64::sqrt);
-        let whiten = |m: &Mat<f64>| times_small(m, &w);
-        let (ar, ai, br, bi) = (whiten(&ar), whiten(&ai), whiten(&br), whiten(&bi));
+        for m in [&mut ar, &mut ai, &mut br, &mut bi] {
+            times_small_in_place(m, &w);
+        }
         Ok(Self {
             n,
             ar,
