@@ -295,7 +295,7 @@ pub(crate) fn global_map_ranked(
         f if f.fits_root(basis.root) => f,
         _ => HarmonicFactor::new(&surface, basis.root, &options.cholesky)?,
     };
-    let harmonic = factor.project(&surface, &basis, &weights, &closed)?;
+    let harmonic = factor.project(&surface, &basis, &weights, closed)?;
     timings.assemble = harmonic.assemble_ms;
     timings.factor = harmonic.factor.analyse_ms + harmonic.factor.factor_ms;
     timings.solve = harmonic.solve_ms;

@@ -286,7 +286,7 @@ impl HarmonicFactor {
         }
     }
 
-    /// Projects each closed form of `closed` onto its harmonic representative (same
+    /// Projects each closed form of `closed` onto its harmonic representative, in place (same
     /// cohomology class: `h − ω = d f` is exact, so every period is kept). `basis` must be a
     /// homology basis of the factored mesh, rooted at the pinned vertex for a whole
     /// factorization ([`Self::fits_root`]).
@@ -298,7 +298,7 @@ impl HarmonicFactor {
         mesh: &TriMesh,
         basis: &HomologyBasis,
         weights: &[f64],
-        closed: &[Cochain],
+        mut closed: Vec<Cochain>,
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
         let ends = edge_ends(mesh, basis);
@@ -317,24 +317,27 @@ impl HarmonicFactor {
             });
         }
         // the forms are independent: one per thread
-        let solved: Vec<(Cochain, f64)> = closed
-            .par_iter()
+        // h = ω + d f, in place (the closed forms are not needed after)
+        let residuals: Vec<f64> = closed
+            .par_iter_mut()
             .zip(&potentials)
             .zip(&divs)
-            .map(|((w, f), div)| {
-                let h: Cochain = ends
-                    .iter()
-                    .zip(w)
-                    .map(|(&(a, b), &x)| x + f[b as usize] - f[a as usize])
-                    .collect();
+            .map(|((h, f), div)| {
+                for (x, &(a, b)) in h.iter_mut().zip(&ends) {
+                    *x = (*x + f[b as usize]) - f[a as usize];
+                }
                 let scale = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                let after = divergence(mesh.num_vertices(), &ends, weights, &h);
+                let after = divergence(mesh.num_vertices(), &ends, weights, h);
                 let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                (h, if scale > 0.0 { res / scale } else { 0.0 })
+                if scale > 0.0 {
+                    res / scale
+                } else {
+                    0.0
+                }
             })
             .collect();
-        let codifferential_residual = solved.iter().fold(0.0f64, |m, (_, r)| m.max(*r));
-        let forms = solved.into_iter().map(|(h, _)| h).collect();
+        let codifferential_residual = residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+        let forms = closed;
         Ok(HarmonicSolve {
             forms,
             codifferential_residual,
