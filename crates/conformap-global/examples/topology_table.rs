@@ -2,8 +2,9 @@
 //! (`../shared/meshes/`). Run in release:
 //!
 //! ```text
-//! cargo run --release -p conformap-global --example topology_table -- [MESH.obj ...] [--slit-length F] [--max-slits N]
+//! cargo run --release -p conformap-global --example topology_table -- [MESH.obj ...] [--slit-length F] [--max-slits N] [--yardstick-only]
 //! ```
+//! `--yardstick-only`: print the yardstick alone (to interleave with runs of the CLI).
 //! Per mesh: every step (slits added and their centres, genus of the double covering,
 //! uniformity energy and its ratio to the starting map's, log-area spread, folds, time as a
 //! multiple of the step's own factorization and of the yardstick of issue 23: one
@@ -41,6 +42,13 @@ fn main() -> Res {
     options = options
         .clone()
         .with_global(options.global.clone().with_search(search));
+    let yardstick_only = match args.iter().position(|a| a == "--yardstick-only") {
+        Some(i) => {
+            args.remove(i);
+            true
+        }
+        None => false,
+    };
     let names = if args.is_empty() {
         vec!["spot.obj".to_owned(), "armadillo.obj".to_owned()]
     } else {
@@ -53,6 +61,10 @@ fn main() -> Res {
         };
         let mesh = conformap_testkit::read_plain_obj(&path)?;
         let yardstick = input_factor_ms(&mesh)?;
+        if yardstick_only {
+            println!("{name}: one factorization of the input's Laplacian: {yardstick:.1} ms (median of 5)");
+            continue;
+        }
         let r = topology_opt(&mesh, &options)?;
         println!(
             "{name}: V={} F={} slit length {:.4} ({} of diag); best step {}; stop: {}; total {:.0} ms",
@@ -65,7 +77,7 @@ fn main() -> Res {
             r.total_ms
         );
         println!("one factorization of the input's Laplacian: {yardstick:.1} ms (median of 5)");
-        println!("step slits +added genus energy      ratio  logA_sd folds(z/out) time_ms factor_ms x_factor x_input objective_ms newton coarse model  centres");
+        println!("step slits +added genus energy      ratio  logA_sd folds(z/out) time_ms factor_ms x_factor x_input objective_ms newton coarse hessians model  centres");
         for (i, s) in r.steps.iter().enumerate() {
             let centres: Vec<String> = s
                 .added
@@ -73,7 +85,7 @@ fn main() -> Res {
                 .map(|a| format!("{}({})", a.centre, a.vertices.len() - 1))
                 .collect();
             println!(
-                "{i:>4} {:>5} {:>6} {:>5} {:.4e} {:>6.3} {:>7.3} {:>4}/{:<4} {:>8.0} {:>8.0} {:>7.1} {:>7.1} {:>8.0} {:>5} {:>5} {}  {}",
+                "{i:>4} {:>5} {:>6} {:>5} {:.4e} {:>6.3} {:>7.3} {:>4}/{:<4} {:>8.0} {:>8.0} {:>7.1} {:>7.1} {:>8.0} {:>5} {:>5} {:>5} {}  {}",
                 s.slits,
                 s.added.len(),
                 s.surface_genus,
@@ -89,6 +101,7 @@ fn main() -> Res {
                 s.objective_ms,
                 s.newton_iterations,
                 s.coarse_iterations,
+                s.hessians,
                 s.energy_model,
                 centres.join(" ")
             );

@@ -186,6 +186,11 @@ impl SymbolicAnalysis {
         self.0.stats.analyse_ms
     }
 
+    /// The fill-reducing permutation chosen (see [`Cholesky::permutation`]).
+    pub fn permutation(&self) -> Vec<usize> {
+        self.0.permutation()
+    }
+
     /// The numeric factorization of `a`, which must have exactly the pattern analysed.
     ///
     /// # Errors
@@ -393,6 +398,17 @@ impl Cholesky {
             })?;
         self.stats.factor_ms = t0.elapsed().as_secs_f64() * 1e3;
         Ok(())
+    }
+
+    /// The fill-reducing permutation of the factorization: `perm[k]` is the row eliminated
+    /// at step `k` (as [`Ordering::Custom`] takes it; the identity when there is none).
+    /// An ordering computed once can so be reused for related matrices (a principal
+    /// submatrix keeps the order of its rows).
+    pub fn permutation(&self) -> Vec<usize> {
+        match self.symbolic.perm() {
+            Some(p) => p.arrays().0.to_vec(),
+            None => (0..self.stats.n).collect(),
+        }
     }
 
     /// Dimension of the factored matrix.

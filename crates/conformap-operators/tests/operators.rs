@@ -184,6 +184,27 @@ fn cholesky_solves_interior_block_to_round_off_with_every_ordering() {
         assert!(relative_residual(&blocks.ii, &x, &b) < 1e-12);
         assert!(chol.stats().nnz_factor >= n);
     }
+    // the permutation chosen by AMD, given back as a custom ordering, factors with the
+    // same fill; the analysis alone reports it too
+    let amd = CholeskyOptions::DEFAULT.with_ordering(Ordering::Amd);
+    let chol = Cholesky::factor_with(&blocks.ii, &amd).unwrap();
+    let perm = chol.permutation();
+    let mut sorted = perm.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, (0..n).collect::<Vec<_>>());
+    assert_eq!(
+        Cholesky::analyse_with(&blocks.ii, &amd)
+            .unwrap()
+            .permutation(),
+        perm
+    );
+    let again = Cholesky::factor_with(
+        &blocks.ii,
+        &CholeskyOptions::DEFAULT.with_ordering(Ordering::Custom(perm)),
+    )
+    .unwrap();
+    assert_eq!(again.stats().nnz_factor, chol.stats().nnz_factor);
+    assert!(relative_residual(&blocks.ii, &again.solve_complex(&b), &b) < 1e-12);
     // refactor with a scaled matrix reuses the analysis
     let mut chol = Cholesky::factor(&blocks.ii).unwrap();
     let scaled = blocks.ii.map(|v| 2.0 * v);

@@ -9,6 +9,7 @@ use std::collections::VecDeque;
 
 use conformap_mesh::{HomologyBasis, TriMesh};
 use conformap_operators::corner_cotangents;
+use rayon::prelude::*;
 
 /// A real 1-form: one value per edge.
 pub type Cochain = Vec<f64>;
@@ -48,38 +49,45 @@ pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>,
             }
         }
     }
-    // all forms at once, edge-major (`w[e n + k]`): one pass over the dual tree
-    let n = basis.generators.len();
-    let mut w = vec![0.0; edges.len() * n];
-    for (k, gen) in basis.generators.iter().enumerate() {
-        w[gen.edge as usize * n + k] = 1.0;
-    }
-    let mut others = vec![0.0; n];
-    for &f in order.iter().skip(1).rev() {
-        let ph = parent_h[f] as usize;
-        others.fill(0.0);
-        for h in (3 * f..3 * f + 3).filter(|&h| h != ph) {
-            let (e, sign) = (edges.edge_of[h] as usize, edges.sign(h));
-            for (o, x) in others.iter_mut().zip(&w[e * n..(e + 1) * n]) {
-                *o += sign * x;
+    // the peeling schedule: per face, from the leaves of the dual tree to its root, the
+    // edge set by closedness (with its sign) and the face's two other edges
+    let step = |h: usize| (edges.edge_of[h], edges.sign(h));
+    let schedule: Vec<[(u32, f64); 3]> = order
+        .iter()
+        .skip(1)
+        .rev()
+        .map(|&f| {
+            let ph = parent_h[f] as usize;
+            let mut others = (3 * f..3 * f + 3).filter(|&h| h != ph).map(step);
+            let first = others.next().unwrap_or((0, 0.0));
+            let second = others.next().unwrap_or((0, 0.0));
+            [step(ph), first, second]
+        })
+        .collect();
+    // one form per thread, form-major: each pass reads the schedule in order and touches
+    // one `edges`-long vector, which stays in cache (the edge-major `edges × n` array of
+    // all forms at once was read at random, a cache miss per row)
+    let forms: Vec<Cochain> = basis
+        .generators
+        .par_iter()
+        .map(|gen| {
+            let mut w = vec![0.0; edges.len()];
+            w[gen.edge as usize] = 1.0;
+            for &[(e, sign), (e1, s1), (e2, s2)] in &schedule {
+                // sign(ph) · w[e] + others = 0
+                let others = 0.0 + s1 * w[e1 as usize] + s2 * w[e2 as usize];
+                w[e as usize] = -others * sign;
             }
-        }
-        // sign(ph) · w[e] + others = 0
-        let (e, sign) = (edges.edge_of[ph] as usize, edges.sign(ph));
-        for (x, o) in w[e * n..(e + 1) * n].iter_mut().zip(&others) {
-            *x = -o * sign;
-        }
-    }
+            w
+        })
+        .collect();
     let mut root_residual = 0.0f64;
-    for k in 0..n {
+    for w in &forms {
         let root: f64 = (0..3)
-            .map(|h| edges.sign(h) * w[edges.edge_of[h] as usize * n + k])
+            .map(|h| edges.sign(h) * w[edges.edge_of[h] as usize])
             .sum();
         root_residual = root_residual.max(root.abs());
     }
-    let forms = (0..n)
-        .map(|k| (0..edges.len()).map(|e| w[e * n + k]).collect())
-        .collect();
     (forms, root_residual)
 }
 

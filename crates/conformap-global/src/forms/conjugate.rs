@@ -12,12 +12,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::forms::blocked::inner_products;
 use crate::forms::cohomology::Cochain;
 use crate::forms::dense::{frobenius, inverse, mat_mul, symmetric_function, transpose};
-use crate::forms::periods::cochain_matrix;
 use conformap_mesh::HomologyBasis;
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, Par};
 
 use crate::GlobalError;
 
@@ -83,7 +81,9 @@ impl Conjugation {
 /// as matrix products over the faces and edges (the face sums of `cohomology::wedge` and
 /// `cohomology::inner_product` for all pairs at once): with `A₁[f][k] = ω_k(v0 → v1)`,
 /// `A₂[f][k] = ω_k(v0 → v2)`, `W = ½ (A₁ᵀA₂ − A₂ᵀA₁)`; `H = Hᵀ diag(w) H` with the forms as
-/// the columns of `H`. Exactly antisymmetric and symmetric (the upper triangles mirrored).
+/// the columns of `H`. Both are summed block by block (`blocked.rs`: the `faces × n` and
+/// `edges × n` factors are never stored whole). Exactly antisymmetric and symmetric (the
+/// upper triangles mirrored).
 pub fn wedge_and_gram(
     basis: &HomologyBasis,
     weights: &[f64],
@@ -92,29 +92,31 @@ pub fn wedge_and_gram(
 ) -> (Vec<f64>, Vec<f64>) {
     let n = h.len();
     let e = &basis.edges;
-    let hm = cochain_matrix(h);
-    let on = |he: usize, k: usize| e.sign(he) * hm[(e.edge_of[he] as usize, k)];
-    let a1 = Mat::<f64>::from_fn(faces, n, |f, k| on(3 * f, k));
-    let a2 = Mat::<f64>::from_fn(faces, n, |f, k| -on(3 * f + 2, k));
-    let mut x = Mat::<f64>::zeros(n, n);
-    matmul(
-        x.as_mut(),
-        Accum::Replace,
-        a1.transpose(),
-        a2.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
-    let weighted = Mat::<f64>::from_fn(hm.nrows(), n, |r, k| weights[r] * hm[(r, k)]);
-    let mut gm = Mat::<f64>::zeros(n, n);
-    matmul(
-        gm.as_mut(),
-        Accum::Replace,
-        weighted.transpose(),
-        hm.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
+    let x = inner_products(faces, n, |start, len, mut a1, mut a2| {
+        // each face's two edges and orientations, looked up once for all forms
+        let at: Vec<[(usize, f64); 2]> = (start..start + len)
+            .map(|f| [3 * f, 3 * f + 2].map(|he| (e.edge_of[he] as usize, e.sign(he))))
+            .collect();
+        for (k, form) in h.iter().enumerate() {
+            for (r, &[(e1, s1), (e2, s2)]) in at.iter().enumerate() {
+                a1[(r, k)] = s1 * form[e1];
+                a2[(r, k)] = -(s2 * form[e2]);
+            }
+        }
+    });
+    let rows = h.first().map_or(0, Vec::len);
+    let gm = inner_products(rows, n, |start, len, mut weighted, mut plain| {
+        for (k, form) in h.iter().enumerate() {
+            for (r, (&value, &w)) in form[start..start + len]
+                .iter()
+                .zip(&weights[start..start + len])
+                .enumerate()
+            {
+                weighted[(r, k)] = w * value;
+                plain[(r, k)] = value;
+            }
+        }
+    });
     let mut w = vec![0.0; n * n];
     let mut g = vec![0.0; n * n];
     for i in 0..n {

@@ -216,6 +216,17 @@ impl GlobalMap {
 /// # Ok::<(), conformap_global::GlobalError>(())
 /// ```
 pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMap, GlobalError> {
+    global_map_ranked(mesh, options, None)
+}
+
+/// [`global_map`] whose double covering's two factorizations eliminate the vertices in the
+/// order of `rank` (per vertex of `mesh`, see `HarmonicFactor::mirrored`) instead of a
+/// fresh fill-reducing ordering; `None`: [`global_map`].
+pub(crate) fn global_map_ranked(
+    mesh: &TriMesh,
+    options: &GlobalMapOptions,
+    rank: Option<&[u64]>,
+) -> Result<GlobalMap, GlobalError> {
     let t_all = Instant::now();
     let mut timings = GlobalTimings::default();
     let boundaries = mesh.boundary_loops().len();
@@ -262,7 +273,9 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         || match &mirror {
             // a double covering: two half-size factorizations (Neumann and Dirichlet on
             // one copy, see `harmonic.rs`)
-            Some(m) => HarmonicFactor::mirrored(&surface, m, input_vertices, &options.cholesky),
+            Some(m) => {
+                HarmonicFactor::mirrored(&surface, m, input_vertices, &options.cholesky, rank)
+            }
             None => HarmonicFactor::new(&surface, pinned, &options.cholesky),
         },
     );
@@ -282,7 +295,7 @@ pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMa
         f if f.fits_root(basis.root) => f,
         _ => HarmonicFactor::new(&surface, basis.root, &options.cholesky)?,
     };
-    let harmonic = factor.project(&surface, &basis, &weights, &closed)?;
+    let harmonic = factor.project(&surface, &basis, &weights, closed)?;
     timings.assemble = harmonic.assemble_ms;
     timings.factor = harmonic.factor.analyse_ms + harmonic.factor.factor_ms;
     timings.solve = harmonic.solve_ms;

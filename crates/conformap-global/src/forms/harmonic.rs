@@ -8,8 +8,9 @@ use std::time::Instant;
 
 use conformap_mesh::{HomologyBasis, TriMesh};
 use conformap_operators::{
-    cotan_laplacian, Cholesky, CholeskyOptions, FactorStats, LaplacianBlocks, Partition,
+    cotan_laplacian, Cholesky, CholeskyOptions, FactorStats, LaplacianBlocks, Ordering, Partition,
 };
+use rayon::prelude::*;
 
 use crate::forms::cohomology::Cochain;
 use crate::GlobalError;
@@ -30,16 +31,40 @@ pub struct HarmonicSolve {
     pub solve_ms: f64,
 }
 
-/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)`.
-fn divergence(mesh: &TriMesh, basis: &HomologyBasis, weights: &[f64], w: &[f64]) -> Vec<f64> {
-    let mut div = vec![0.0; mesh.num_vertices()];
-    for (e, &h) in basis.edges.halfedge.iter().enumerate() {
-        let (a, b) = mesh.halfedge_vertices(h as usize);
+/// The vertices `(from, to)` of each edge's reference half-edge, looked up once for all
+/// the forms of a projection.
+fn edge_ends(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<(u32, u32)> {
+    basis
+        .edges
+        .halfedge
+        .iter()
+        .map(|&h| mesh.halfedge_vertices(h as usize))
+        .collect()
+}
+
+/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)`, with `ends` each edge's reference
+/// half-edge's vertices ([`edge_ends`]).
+fn divergence(vertices: usize, ends: &[(u32, u32)], weights: &[f64], w: &[f64]) -> Vec<f64> {
+    let mut div = vec![0.0; vertices];
+    for (e, &(a, b)) in ends.iter().enumerate() {
         let flux = weights[e] * w[e];
         div[a as usize] += flux;
         div[b as usize] -= flux;
     }
     div
+}
+
+/// `options` with the elimination order of `part`'s interior vertices by ascending
+/// `rank` (ties by vertex; vertices beyond `rank` last): an order inherited from a related
+/// surface instead of a fresh one (see [`HarmonicFactor::mirrored`]).
+fn inherited(part: &Partition, rank: &[u64], options: &CholeskyOptions) -> CholeskyOptions {
+    let key = |p: usize| {
+        let v = part.interior[p] as usize;
+        (rank.get(v).copied().unwrap_or(u64::MAX), v)
+    };
+    let mut perm: Vec<usize> = (0..part.interior.len()).collect();
+    perm.sort_by_key(|&p| key(p));
+    options.clone().with_ordering(Ordering::Custom(perm))
 }
 
 /// The reduced cotangent Laplacian of a closed surface (one vertex pinned), assembled and
@@ -105,7 +130,13 @@ impl HarmonicFactor {
 
     /// The two half-size factorizations of a symmetric double covering `mesh` (see the type's
     /// docs): `mirror` gives each vertex's mirror image (boundary vertices are their own),
-    /// the first `copy_vertices` vertices are the first copy and the boundary.
+    /// the first `copy_vertices` vertices are the first copy and the boundary. With `rank`
+    /// (per vertex of the first copy, e.g. from the unslit input's ordering, see
+    /// `topology_opt`), both halves are eliminated in that order instead of a fresh
+    /// fill-reducing ordering of each: the Dirichlet half of a slit surface is a principal
+    /// submatrix of the input's Laplacian (the slit vertices removed), which keeps the
+    /// order's fill, and the Neumann half differs by the slits' copies, ranked next to
+    /// their originals.
     ///
     /// # Errors
     /// As [`HarmonicFactor::new`].
@@ -114,6 +145,7 @@ impl HarmonicFactor {
         mirror: &[u32],
         copy_vertices: usize,
         options: &CholeskyOptions,
+        rank: Option<&[u64]>,
     ) -> Result<Self, GlobalError> {
         let t0 = Instant::now();
         let n1 = copy_vertices;
@@ -138,8 +170,15 @@ impl HarmonicFactor {
             LaplacianBlocks::new(&l1, &dirichlet),
         );
         let assemble_ms = ms(t0);
-        let chol_n = Cholesky::factor_with(&bn.ii, options)?;
-        let chol_d = Cholesky::factor_with(&bd.ii, options)?;
+        let (on, od) = match rank {
+            Some(r) => (
+                inherited(&neumann, r, options),
+                inherited(&dirichlet, r, options),
+            ),
+            None => (options.clone(), options.clone()),
+        };
+        let chol_n = Cholesky::factor_with(&bn.ii, &on)?;
+        let chol_d = Cholesky::factor_with(&bd.ii, &od)?;
         Ok(Self {
             kind: Kind::Mirrored(Box::new(MirroredHalves {
                 mirror: mirror.to_vec(),
@@ -247,7 +286,7 @@ impl HarmonicFactor {
         }
     }
 
-    /// Projects each closed form of `closed` onto its harmonic representative (same
+    /// Projects each closed form of `closed` onto its harmonic representative, in place (same
     /// cohomology class: `h − ω = d f` is exact, so every period is kept). `basis` must be a
     /// homology basis of the factored mesh, rooted at the pinned vertex for a whole
     /// factorization ([`Self::fits_root`]).
@@ -259,41 +298,46 @@ impl HarmonicFactor {
         mesh: &TriMesh,
         basis: &HomologyBasis,
         weights: &[f64],
-        closed: &[Cochain],
+        mut closed: Vec<Cochain>,
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
+        let ends = edge_ends(mesh, basis);
         let divs: Vec<Vec<f64>> = closed
-            .iter()
-            .map(|w| divergence(mesh, basis, weights, w))
+            .par_iter()
+            .map(|w| divergence(mesh.num_vertices(), &ends, weights, w))
             .collect();
         let potentials = self.potentials(&divs);
-        let mut forms = Vec::with_capacity(closed.len());
-        let mut codifferential_residual = 0.0f64;
-        for (i, (w, f)) in closed.iter().zip(&potentials).enumerate() {
-            if let Some(v) = f.iter().position(|x| !x.is_finite()) {
-                return Err(GlobalError::NonFinite {
-                    vertex: v,
-                    stage: "harmonic projection",
-                });
-            }
-            let h: Cochain = basis
-                .edges
-                .halfedge
-                .iter()
-                .zip(w)
-                .map(|(&he, &x)| {
-                    let (a, b) = mesh.halfedge_vertices(he as usize);
-                    x + f[b as usize] - f[a as usize]
-                })
-                .collect();
-            let scale = divs[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let after = divergence(mesh, basis, weights, &h);
-            let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            if scale > 0.0 {
-                codifferential_residual = codifferential_residual.max(res / scale);
-            }
-            forms.push(h);
+        if let Some(v) = potentials
+            .iter()
+            .find_map(|f| f.iter().position(|x| !x.is_finite()))
+        {
+            return Err(GlobalError::NonFinite {
+                vertex: v,
+                stage: "harmonic projection",
+            });
         }
+        // the forms are independent: one per thread
+        // h = ω + d f, in place (the closed forms are not needed after)
+        let residuals: Vec<f64> = closed
+            .par_iter_mut()
+            .zip(&potentials)
+            .zip(&divs)
+            .map(|((h, f), div)| {
+                for (x, &(a, b)) in h.iter_mut().zip(&ends) {
+                    *x = (*x + f[b as usize]) - f[a as usize];
+                }
+                let scale = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                let after = divergence(mesh.num_vertices(), &ends, weights, h);
+                let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                if scale > 0.0 {
+                    res / scale
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let codifferential_residual = residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+        let forms = closed;
         Ok(HarmonicSolve {
             forms,
             codifferential_residual,

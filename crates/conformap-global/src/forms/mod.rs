@@ -2,6 +2,7 @@
 //! they induce (Jin, Wang, Yau, Gu 2004, §3.1, building on Gu and Yau 2003).
 //!
 //! Module map:
+//! - `blocked.rs`: tall-and-skinny products over the edges or faces, block by block.
 //! - `dense.rs`: small dense linear algebra (inverse, Jacobi eigen, matrix functions).
 //! - `cohomology.rs`: the closed basis dual to the tree–cotree generators, `∫ α ∧ β` and
 //!   `∫ α ∧ *β`.
@@ -21,6 +22,7 @@
 //! - `seamed.rs`: [`SeamedLayout`], the layout as a file writes it (per-corner texture
 //!   coordinates in the unit square).
 
+mod blocked;
 mod cohomology;
 mod conjugate;
 mod dense;
@@ -38,6 +40,7 @@ mod zeros;
 mod tests;
 
 pub use conjugate::ConjugateMethod;
+pub(crate) use global_map::global_map_ranked;
 pub use global_map::{global_map, GlobalMap, GlobalTimings};
 pub use optimal::{
     EmphasisReport, FormSearchOptions, Objective, ObjectiveReport, UniformSearch,

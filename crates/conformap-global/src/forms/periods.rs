@@ -2,45 +2,55 @@
 //! Riemann's bilinear relations as a residual, and the conformal modulus τ of a torus.
 
 use conformap_mesh::HomologyBasis;
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, Par};
 use num_complex::Complex64;
+use rayon::prelude::*;
+
+use crate::forms::blocked::{blocks, PRODUCT_BLOCK_ROWS};
 
 use crate::forms::cohomology::Cochain;
 
 /// A complex 1-form: one value per edge.
 pub type ComplexCochain = Vec<Complex64>;
 
-/// The cochains `h` as the columns of an `edges × n` matrix.
-pub(crate) fn cochain_matrix(h: &[Cochain]) -> Mat<f64> {
-    let rows = h.first().map_or(0, Vec::len);
-    Mat::from_fn(rows, h.len(), |e, k| h[k][e])
-}
-
 /// `φ_k = ω_k + i Σ_j Λ_jk ω_j` for every `k` (the `2g` holomorphic basis forms; only `g` of
-/// them are complex-linearly independent): the imaginary parts are one matrix product
-/// `H Λ` (`H` the harmonic forms as columns).
+/// them are complex-linearly independent): the imaginary parts are the product `H Λ` (`H`
+/// the harmonic forms as columns), computed block by block of edges (`blocked.rs`; each
+/// block of the `n` forms read once while it is in cache) and written straight into the
+/// complex forms.
 pub fn holomorphic_basis(h: &[Cochain], lambda: &[f64]) -> Vec<ComplexCochain> {
     let n = h.len();
-    let hm = cochain_matrix(h);
-    let lm = Mat::<f64>::from_fn(n, n, |j, k| lambda[j * n + k]);
-    let mut im = Mat::<f64>::zeros(hm.nrows(), n);
-    matmul(
-        im.as_mut(),
-        Accum::Replace,
-        hm.as_ref(),
-        lm.as_ref(),
-        1.0,
-        Par::rayon(0),
-    );
-    (0..n)
-        .map(|k| {
-            h[k].iter()
-                .zip(im.col_as_slice(k))
-                .map(|(&re, &im)| Complex64::new(re, im))
-                .collect()
-        })
-        .collect()
+    let rows = h.first().map_or(0, Vec::len);
+    let mut out: Vec<ComplexCochain> = vec![vec![Complex64::new(0.0, 0.0); rows]; n];
+    // the block `b` of every output form, to fill the blocks in parallel
+    let mut per_block: Vec<Vec<&mut [Complex64]>> =
+        blocks(rows).iter().map(|_| Vec::new()).collect();
+    for form in &mut out {
+        for (b, chunk) in form.chunks_mut(PRODUCT_BLOCK_ROWS).enumerate() {
+            per_block[b].push(chunk);
+        }
+    }
+    per_block
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(b, mut columns)| {
+            let start = b * PRODUCT_BLOCK_ROWS;
+            let mut im = Vec::new();
+            for (k, column) in columns.iter_mut().enumerate() {
+                let len = column.len();
+                im.clear();
+                im.resize(len, 0.0);
+                for (j, form) in h.iter().enumerate() {
+                    let c = lambda[j * n + k];
+                    for (acc, x) in im.iter_mut().zip(&form[start..start + len]) {
+                        *acc += c * x;
+                    }
+                }
+                for ((z, &re), &y) in column.iter_mut().zip(&h[k][start..start + len]).zip(&im) {
+                    *z = Complex64::new(re, y);
+                }
+            }
+        });
+    out
 }
 
 /// The periods of the real forms `h` along the generator loops (row `j`: generator, column

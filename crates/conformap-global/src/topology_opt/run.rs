@@ -5,9 +5,12 @@
 use std::time::Instant;
 
 use conformap_mesh::{SlitMesh, SlitPlanner, Topology, TriMesh};
+use conformap_operators::{
+    cotan_laplacian, Cholesky, CholeskyOptions, LaplacianBlocks, Ordering, Partition,
+};
 use serde::{Deserialize, Serialize};
 
-use crate::forms::{global_map, GlobalMap};
+use crate::forms::{global_map, global_map_ranked, GlobalMap};
 use crate::mobius::energy::{
     planar_face_areas, planar_signed_area, sphere_face_areas, surface_shares,
 };
@@ -88,6 +91,10 @@ pub struct TopologyStep {
     /// Newton iterations on the search's coarse level, over all its starts (0 without one).
     #[serde(default)]
     pub coarse_iterations: usize,
+    /// Hessians the search evaluated over all its starts and levels (fewer than its Newton
+    /// iterations: kept across steps near an optimum; 0 for a sphere or disk map).
+    #[serde(default)]
+    pub hessians: usize,
     /// The global map's own timings by stage (all zero for a sphere or disk map).
     #[serde(default)]
     pub stages_ms: crate::GlobalTimings,
@@ -229,6 +236,11 @@ fn measure_global(
             .search
             .as_ref()
             .map_or(0, |s| s.coarse_iterations),
+        hessians: map
+            .objective
+            .search
+            .as_ref()
+            .map_or(0, |s| s.hessians_total),
         stages_ms: map.timings_ms,
     };
     Measured {
@@ -305,6 +317,39 @@ fn slit_cluster(
     None
 }
 
+/// The elimination rank of every input vertex in the fill-reducing ordering of the input's
+/// cotangent Laplacian (vertex 0 pinned, ranked last), analysed once for the whole loop;
+/// `None` when `cholesky` asks for another ordering than the default policy or the analysis
+/// fails (each slit surface then orders its own). Every slit surface's factorizations
+/// inherit it ([`slit_ranks`]): the per-step ordering (AMD of both halves of the double
+/// covering, most of their symbolic analysis) is gone (docs/benchmarks.md, issue 23).
+fn input_ranks(mesh: &TriMesh, cholesky: &CholeskyOptions) -> Option<Vec<u64>> {
+    if cholesky.ordering != Ordering::Auto {
+        return None;
+    }
+    let l = cotan_laplacian(mesh);
+    let part = Partition::new(mesh.num_vertices(), &[0]);
+    let blocks = LaplacianBlocks::new(&l, &part);
+    let perm = Cholesky::analyse_with(&blocks.ii, cholesky)
+        .ok()?
+        .permutation();
+    let mut rank = vec![perm.len() as u64; mesh.num_vertices()];
+    for (k, &p) in perm.iter().enumerate() {
+        rank[part.interior[p] as usize] = k as u64;
+    }
+    Some(rank)
+}
+
+/// The ranks of the slit mesh's vertices: each input vertex keeps its rank (doubled), the
+/// copies of a slit vertex come right after it.
+fn slit_ranks(input: &[u64], slit: &SlitMesh) -> Vec<u64> {
+    slit.original
+        .iter()
+        .enumerate()
+        .map(|(v, &o)| 2 * input[o as usize] + u64::from(o as usize != v))
+        .collect()
+}
+
 /// The starting map: the uniformity-optimal Möbius sphere map of a closed genus-0 mesh, or
 /// the most uniform global map of a surface of genus ≥ 1 (or with ≥ 2 boundary loops).
 fn start(
@@ -373,6 +418,7 @@ fn start_measured(
         energy_model: String::new(),
         newton_iterations: 0,
         coarse_iterations: 0,
+        hessians: 0,
         stages_ms: crate::GlobalTimings::default(),
     };
     Measured {
@@ -454,6 +500,7 @@ pub fn topology_opt(
     let mut steps = vec![current.step.clone()];
     let (mut best_step, mut best_energy, mut since_best) = (0, e0, 0);
     let mut planner = SlitPlanner::new(mesh);
+    let rank = input_ranks(mesh, &options.global.cholesky);
     let stop = loop {
         let have = planner.slits().len();
         if have >= options.max_slits {
@@ -477,7 +524,8 @@ pub fn topology_opt(
         }
         planner = next;
         let cut = planner.cut(mesh)?;
-        let map = match global_map(&cut.mesh, &options.global) {
+        let slit_rank = rank.as_ref().map(|r| slit_ranks(r, &cut));
+        let map = match global_map_ranked(&cut.mesh, &options.global, slit_rank.as_deref()) {
             Ok(map) => map,
             Err(e) => break format!("the map of the slit surface failed: {e}"),
         };

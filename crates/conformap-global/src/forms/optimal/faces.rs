@@ -19,6 +19,7 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
+use crate::forms::blocked::{times_small_in_place, transpose_times};
 use crate::forms::dense::{symmetric_eigen, symmetric_function};
 use crate::forms::optimal::moments::Aggregates;
 use crate::forms::periods::ComplexCochain;
@@ -41,6 +42,17 @@ pub const DIRECT_BLOCK_FACES: usize = 4096;
 /// faces), where each full step costs `F / 16384` coarse ones.
 pub const COARSE_FACES: usize = 16384;
 
+/// Faces of the coarsest level of a direct search: `4096`. A search with a coarse level
+/// ([`coarse_stride`]) descends from its starts on every `F / 4096`-th face first, then
+/// refines on the coarse level and polishes on all faces. Far from an optimum the
+/// saddle-free Newton takes 10–20 damped steps per start (measured on armadillo's slit
+/// surfaces at genus 12 and 15, issue 23), which need only the landscape's rough shape: on
+/// 4k faces each costs a quarter of a coarse step, and from the coarsest optimum the coarse
+/// level converges in 7–11 (docs/benchmarks.md, issue 23, second pass: armadillo's step 2
+/// the same optimum, step 1 a lower one, −0.16 %). Not used without a coarse level, so the searches of smaller meshes are
+/// unchanged.
+pub const COARSEST_FACES: usize = 4096;
+
 /// Newton iterations per start assumed by [`use_moments`]: `40`. Measured at high genus
 /// (issue 23): 33 per start on armadillo's coarse level at genus 12, 48 on spot at genus 15
 /// (the saddle-free Newton needs many damped steps far from an optimum; converged starts
@@ -58,6 +70,16 @@ pub fn coarse_stride(faces: usize) -> Option<usize> {
     Some(faces / COARSE_FACES).filter(|&s| s >= 2)
 }
 
+/// The strides of the coarse levels of a direct search on `faces` faces, coarsest first:
+/// `faces / COARSEST_FACES` and [`coarse_stride`] when there is a coarse level, nothing
+/// otherwise.
+pub fn coarse_strides(faces: usize) -> Vec<usize> {
+    match coarse_stride(faces) {
+        Some(stride) => vec![(faces / COARSEST_FACES).max(stride), stride],
+        None => Vec::new(),
+    }
+}
+
 /// Whether the moments of `moments.rs` (built once: `2 F m²` flops, `m = n(n+1)/2`, then
 /// `O(n⁴)` per Newton step) cost less than the direct sums (about `6 F n²` flops per
 /// Newton step; with a coarse level, [`NEWTON_ITERATIONS_ESTIMATE`] steps on
@@ -66,7 +88,9 @@ pub fn coarse_stride(faces: usize) -> Option<usize> {
 /// default search of `global`: genus 4 with 104 starts), the direct sums at high genus with
 /// few starts and many faces (the topological optimization's 4 starts on armadillo's 86k
 /// faces from genus 12 on: at genus 23, `2e11` flops of moments against `5e10` of direct
-/// Newton; on spot's 5.9k faces the moments up to genus 22).
+/// Newton; on spot's 5.9k faces the moments up to genus 22). The coarsest level
+/// ([`COARSEST_FACES`]) is not counted: the direct sums are chosen where they were before it,
+/// and cost less there.
 pub fn use_moments(faces: usize, n: usize, starts: usize) -> bool {
     let (f, nf) = (faces as f64, n as f64);
     let m = nf * (nf + 1.0) / 2.0;
@@ -133,38 +157,33 @@ impl FaceForms {
         faces: usize,
     ) -> Result<Self, GlobalError> {
         let n = forms.len();
-        let val = |k: usize, h: usize| edges.sign(h) * forms[k][edges.edge_of[h] as usize];
         let (mut ar, mut ai) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
         let (mut br, mut bi) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
-        for k in 0..n {
-            for f in 0..faces {
-                let (a, b) = (val(k, 3 * f), -val(k, 3 * f + 2));
-                ar[(f, k)] = a.re;
-                ai[(f, k)] = a.im;
-                br[(f, k)] = b.re;
-                bi[(f, k)] = b.im;
+        // each face's two edges and orientations, looked up once for all forms
+        let at: Vec<[(usize, f64); 2]> = (0..faces)
+            .map(|f| [3 * f, 3 * f + 2].map(|h| (edges.edge_of[h] as usize, edges.sign(h))))
+            .collect();
+        for (k, form) in forms.iter().enumerate() {
+            let (c0, c1) = (ar.col_as_slice_mut(k), ai.col_as_slice_mut(k));
+            for (r, &[(e1, s1), _]) in at.iter().enumerate() {
+                let a = s1 * form[e1];
+                c0[r] = a.re;
+                c1[r] = a.im;
+            }
+            let (c2, c3) = (br.col_as_slice_mut(k), bi.col_as_slice_mut(k));
+            for (r, &[_, (e2, s2)]) in at.iter().enumerate() {
+                let b = -(s2 * form[e2]);
+                c2[r] = b.re;
+                c3[r] = b.im;
             }
         }
         // C = Σ_f Q_f = ¼ (X + Xᵀ), X = Re aᵀ Im b − Im aᵀ Re b
-        let mut x = Mat::<f64>::zeros(n, n);
-        matmul(
-            x.as_mut(),
-            Accum::Add,
-            ar.transpose(),
-            bi.as_ref(),
-            1.0,
-            Par::rayon(0),
-        );
-        matmul(
-            x.as_mut(),
-            Accum::Add,
-            ai.transpose(),
-            br.as_ref(),
-            -1.0,
-            Par::rayon(0),
-        );
+        let (x, y) = rayon::join(|| transpose_times(&ar, &bi), || transpose_times(&ai, &br));
         let c: Vec<f64> = (0..n * n)
-            .map(|k| 0.25 * (x[(k / n, k % n)] + x[(k % n, k / n)]))
+            .map(|k| {
+                let (i, j) = (k / n, k % n);
+                0.25 * (x[(i, j)] - y[(i, j)] + x[(j, i)] - y[(j, i)])
+            })
             .collect();
         let (eig, _) = symmetric_eigen(&c, n);
         let (lo, hi) = eig
@@ -191,20 +210,9 @@ impl FaceForms {
             .collect();
         let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
         let w_inv = symmetric_function(&c, n, f64::sqrt);
-        let wm = Mat::<f64>::from_fn(n, n, |i, j| w[i * n + j]);
-        let whiten = |m: &Mat<f64>| {
-            let mut out = Mat::<f64>::zeros(faces, n);
-            matmul(
-                out.as_mut(),
-                Accum::Replace,
-                m.as_ref(),
-                wm.as_ref(),
-                1.0,
-                Par::rayon(0),
-            );
-            out
-        };
-        let (ar, ai, br, bi) = (whiten(&ar), whiten(&ai), whiten(&br), whiten(&bi));
+        for m in [&mut ar, &mut ai, &mut br, &mut bi] {
+            times_small_in_place(m, &w);
+        }
         Ok(Self {
             n,
             ar,
@@ -338,6 +346,106 @@ impl FaceForms {
             uu: row_major(&uu),
             rq,
         }
+    }
+
+    /// `E` and `∇E = 4 (R − ρ μ)` at a unit `μ`, summed over the faces in `O(F n)` (no
+    /// Hessian): `R_k = Σ_f r_f u_{f,k}` with
+    /// `u_{f,k} = ¼ (Re a_k Im B − Im a_k Re B + Re A Im b_k − Im A Re b_k)`, so
+    /// `R = ¼ (Re aᵀ(r Im B) − Im aᵀ(r Re B) + Im bᵀ(r Re A) − Re bᵀ(r Im A))`.
+    pub fn first_order(&self, mu: &[f64]) -> (f64, Vec<f64>) {
+        let n = self.n;
+        let parts: Vec<(f64, f64, Vec<f64>)> = self
+            .blocks()
+            .par_iter()
+            .map(|&(start, len)| {
+                let [a_r, a_i, b_r, b_i] = self.edge_values(mu, start, len);
+                let (mut energy, mut rho) = (0.0, 0.0);
+                let mut weighted = [
+                    vec![0.0; len],
+                    vec![0.0; len],
+                    vec![0.0; len],
+                    vec![0.0; len],
+                ];
+                for r in 0..len {
+                    let area = 0.5 * (a_r[r] * b_i[r] - a_i[r] * b_r[r]);
+                    let res = area - self.s[start + r];
+                    energy += res * res;
+                    rho += res * area;
+                    weighted[0][r] = res * b_i[r];
+                    weighted[1][r] = -res * b_r[r];
+                    weighted[2][r] = res * a_r[r];
+                    weighted[3][r] = -res * a_i[r];
+                }
+                let dot = |m: &Mat<f64>, k: usize, w: &[f64]| -> f64 {
+                    m.col_as_slice(k)[start..start + len]
+                        .iter()
+                        .zip(w)
+                        .map(|(x, y)| x * y)
+                        .sum()
+                };
+                let big_r = (0..n)
+                    .map(|k| {
+                        0.25 * (dot(&self.ar, k, &weighted[0])
+                            + dot(&self.ai, k, &weighted[1])
+                            + dot(&self.bi, k, &weighted[2])
+                            + dot(&self.br, k, &weighted[3]))
+                    })
+                    .collect();
+                (energy, rho, big_r)
+            })
+            .collect();
+        let (mut energy, mut rho, mut big_r) = (0.0, 0.0, vec![0.0; n]);
+        for (e, p, r) in &parts {
+            energy += e;
+            rho += p;
+            for (a, b) in big_r.iter_mut().zip(r) {
+                *a += b;
+            }
+        }
+        let c = self.weight;
+        let gradient = (0..n).map(|i| 4.0 * c * (big_r[i] - rho * mu[i])).collect();
+        (c * energy, gradient)
+    }
+
+    /// The six sums of [`crate::forms::optimal::uniform::EnergyModel::great_circle`] for
+    /// unit, orthogonal `mu` and `w`: on face `f`, with `α`, `γ` the areas under `μ` and
+    /// `w` and `β` the cross term `¼ (Im(conj(A_μ) B_w) + Im(conj(A_w) B_μ))`, the area at
+    /// `cos θ μ + sin θ w` is `p + q cos 2θ + r sin 2θ` with `p = (α + γ)/2`,
+    /// `q = (α − γ)/2`, `r = β`; the sums are `Σ (p − s)²`, `Σ (p − s) q`, `Σ (p − s) r`,
+    /// `Σ q²`, `Σ r²`, `Σ q r` (weighted). One `O(F n)` pass.
+    pub fn great_circle(&self, mu: &[f64], w: &[f64]) -> [f64; 6] {
+        let parts: Vec<[f64; 6]> = self
+            .blocks()
+            .par_iter()
+            .map(|&(start, len)| {
+                let [mr, mi, nr, ni] = self.edge_values(mu, start, len);
+                let [wr, wi, vr, vi] = self.edge_values(w, start, len);
+                let mut c = [0.0; 6];
+                for r in 0..len {
+                    let alpha = 0.5 * (mr[r] * ni[r] - mi[r] * nr[r]);
+                    let gamma = 0.5 * (wr[r] * vi[r] - wi[r] * vr[r]);
+                    let beta =
+                        0.25 * ((mr[r] * vi[r] - mi[r] * vr[r]) + (wr[r] * ni[r] - wi[r] * nr[r]));
+                    let p = 0.5 * (alpha + gamma) - self.s[start + r];
+                    let q = 0.5 * (alpha - gamma);
+                    let rr = beta;
+                    c[0] += p * p;
+                    c[1] += p * q;
+                    c[2] += p * rr;
+                    c[3] += q * q;
+                    c[4] += rr * rr;
+                    c[5] += q * rr;
+                }
+                c
+            })
+            .collect();
+        let mut total = [0.0; 6];
+        for p in &parts {
+            for (t, x) in total.iter_mut().zip(p) {
+                *t += x;
+            }
+        }
+        total.map(|x| x * self.weight)
     }
 
     fn block_aggregates(&self, mu: &[f64], start: usize, len: usize) -> Partial {

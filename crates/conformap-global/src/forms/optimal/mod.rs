@@ -218,27 +218,34 @@ pub(crate) fn choose(
                 let moments = moments::Moments::from_faces(&ff);
                 search_pair(
                     &moments,
-                    None,
+                    &[],
                     (&basis_mu, &basis_uniformity),
                     maximize,
                     search,
                 )
             } else {
-                if let Some(stride) = faces::coarse_stride(ff.faces()) {
-                    energy_model = format!("direct, coarse level 1/{stride} of the faces");
-                    let coarse = ff.sample(stride);
-                    let coarse: &dyn EnergyModel = &coarse;
-                    search_pair(
-                        &ff,
-                        Some(coarse),
-                        (&basis_mu, &basis_uniformity),
-                        maximize,
-                        search,
-                    )
-                } else {
-                    energy_model = "direct".to_owned();
-                    search_pair(&ff, None, (&basis_mu, &basis_uniformity), maximize, search)
-                }
+                let strides = faces::coarse_strides(ff.faces());
+                let samples: Vec<FaceForms> = strides.iter().map(|&s| ff.sample(s)).collect();
+                let levels: Vec<&dyn EnergyModel> =
+                    samples.iter().map(|s| s as &dyn EnergyModel).collect();
+                energy_model = match strides.as_slice() {
+                    [] => "direct".to_owned(),
+                    _ => format!(
+                        "direct, coarse levels {} of the faces",
+                        strides
+                            .iter()
+                            .map(|s| format!("1/{s}"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                };
+                search_pair(
+                    &ff,
+                    &levels,
+                    (&basis_mu, &basis_uniformity),
+                    maximize,
+                    search,
+                )
             };
             if let Some(other) = other {
                 let (hi, lo) = if maximize {
@@ -296,7 +303,7 @@ pub(crate) fn choose(
                 energy_model = "moments".to_owned();
                 let found = search::multistart(
                     &moments,
-                    None,
+                    &[],
                     &sub_basis,
                     None,
                     false,
@@ -360,7 +367,7 @@ fn unit_vector(n: usize, k: usize) -> Vec<f64> {
 /// energies) and, with [`FormSearchOptions::compare`], the opposite extreme's.
 fn search_pair<M: EnergyModel + ?Sized>(
     model: &M,
-    coarse: Option<&dyn EnergyModel>,
+    coarse: &[&dyn EnergyModel],
     (basis, energy): (&[Vec<f64>], &[f64]),
     maximize: bool,
     search: &FormSearchOptions,

@@ -7,7 +7,9 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::forms::optimal::uniform::{local_search, EnergyModel, LocalOptimum};
+use crate::forms::optimal::uniform::{
+    local_search, local_search_seeded, EnergyModel, LocalOptimum,
+};
 
 /// Default number of random starts. 48: on fertility (g = 4) the best optimum is reached by
 /// about a quarter of the starts (papers README; measured here, see the tests), so 48
@@ -110,14 +112,19 @@ pub struct UniformSearch {
     pub iterations_total: usize,
     /// Most Newton iterations of one start.
     pub iterations_max: usize,
+    /// Hessians evaluated over all starts (and levels): at most one per Newton iteration
+    /// plus one per start, fewer when kept across steps in the local regime (see
+    /// `uniform::HESSIAN_REUSE_CONTRACTION`).
+    #[serde(default)]
+    pub hessians_total: usize,
     /// Starts that stopped without meeting the gradient test.
     pub unconverged: usize,
-    /// Newton iterations on the coarse level (a sample of the faces) over all starts,
+    /// Newton iterations on the coarse levels (samples of the faces) over all starts,
     /// before [`Self::iterations_total`] on all faces; 0 without a coarse level.
     #[serde(default)]
     pub coarse_iterations: usize,
-    /// Starts whose coarse optimum was more than `POLISH_WINDOW` from the best coarse one:
-    /// not polished, not counted in [`Self::starts`] nor in the optima.
+    /// Starts whose optimum on a coarse level was more than `POLISH_WINDOW` from the best
+    /// one there: not refined further, not counted in [`Self::starts`] nor in the optima.
     #[serde(default)]
     pub unpolished: usize,
     /// Wall-clock milliseconds of the search.
@@ -164,70 +171,115 @@ pub fn random_directions(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
 /// armadillo and spot, docs/benchmarks.md, issue 23), while distinct local optima of a
 /// high-genus surface differ by 0.4 % and more; a coarse optimum 5 % worse than the best
 /// does not win after its polish, and each polish costs a few full `O(F n²)` Newton steps.
+/// The same window applies from the coarsest level (4k faces) to the coarse one.
 pub const POLISH_WINDOW: f64 = 0.05;
 
-/// Each start descended on `coarse`, then polished on `model` — once per distinct coarse
-/// optimum (energies equal within [`OPTIMUM_MATCH_REL`]: the same local optimum, whose
-/// polish the other starts would repeat step for step; they share its result, with 0
-/// iterations of their own), and only within [`POLISH_WINDOW`] of the best coarse optimum.
-/// Returns the optima of the polished starts, the coarse iterations and the starts left
-/// unpolished.
-fn two_level<M: EnergyModel + ?Sized>(
+/// One level of the refinement: the optimum of each start on the level before (`None`: a
+/// start dropped there) polished on `model` — once per distinct optimum (energies equal
+/// within [`OPTIMUM_MATCH_REL`]: the same local optimum, whose polish the other starts would
+/// repeat step for step; they share its result, with 0 iterations of their own), and only
+/// within [`POLISH_WINDOW`] of the best (the others are dropped).
+fn refine<M: EnergyModel + ?Sized>(
     model: &M,
-    coarse: &dyn EnergyModel,
-    starts: &[Vec<f64>],
+    near: &[Option<LocalOptimum>],
     maximize: bool,
-) -> (Vec<LocalOptimum>, usize, usize) {
-    let near: Vec<LocalOptimum> = starts
-        .par_iter()
-        .map(|s| local_search(coarse, s, maximize))
-        .collect();
+) -> Vec<Option<LocalOptimum>> {
     let sign = if maximize { -1.0 } else { 1.0 };
     let best = near
         .iter()
+        .flatten()
         .map(|r| sign * r.energy)
         .fold(f64::INFINITY, f64::min);
     let promising = |e: f64| sign * e <= best + POLISH_WINDOW * best.abs();
-    let mut rep: Vec<usize> = Vec::with_capacity(near.len());
+    let mut rep: Vec<Option<usize>> = Vec::with_capacity(near.len());
     for (i, a) in near.iter().enumerate() {
-        let same = (0..i).find(|&j| {
-            rep[j] == j
-                && (a.energy - near[j].energy).abs() <= OPTIMUM_MATCH_REL * near[j].energy.abs()
+        let Some(a) = a else {
+            rep.push(None);
+            continue;
+        };
+        let same = (0..i).find(|&j| match &near[j] {
+            Some(b) if rep[j] == Some(j) => {
+                (a.energy - b.energy).abs() <= OPTIMUM_MATCH_REL * b.energy.abs()
+            }
+            _ => false,
         });
-        rep.push(same.unwrap_or(i));
+        rep.push(Some(same.unwrap_or(i)));
     }
     let polished: Vec<Option<LocalOptimum>> = (0..near.len())
         .into_par_iter()
-        .map(|i| {
-            (rep[i] == i && promising(near[i].energy))
-                .then(|| local_search(model, &near[i].mu, maximize))
+        .map(|i| match &near[i] {
+            Some(a) if rep[i] == Some(i) && promising(a.energy) => Some(local_search_seeded(
+                model,
+                &a.mu,
+                maximize,
+                Some(&a.hessian),
+            )),
+            _ => None,
         })
         .collect();
-    let results: Vec<LocalOptimum> = rep
-        .iter()
+    rep.iter()
         .enumerate()
-        .filter_map(|(i, &r)| {
+        .map(|(i, r)| {
+            let r = (*r)?;
             let mut out = polished[r].clone()?;
             if r != i {
                 out.iterations = 0;
+                out.hessians = 0;
             }
             Some(out)
         })
+        .collect()
+}
+
+/// Each start descended on the coarsest of `levels` (samples of the faces, coarsest
+/// first), then refined ([`refine`]) on each finer level and last on `model`. Returns the
+/// optima of the starts polished on `model`, the Newton iterations and Hessians on the
+/// coarse levels, and the starts dropped on the way.
+fn multi_level<M: EnergyModel + ?Sized>(
+    model: &M,
+    levels: &[&dyn EnergyModel],
+    starts: &[Vec<f64>],
+    maximize: bool,
+) -> (Vec<LocalOptimum>, [usize; 2], usize) {
+    let work = |near: &[Option<LocalOptimum>]| -> [usize; 2] {
+        let it = near.iter().flatten();
+        [
+            it.clone().map(|r| r.iterations).sum(),
+            it.map(|r| r.hessians).sum(),
+        ]
+    };
+    let mut near: Vec<Option<LocalOptimum>> = match levels.first() {
+        Some(first) => starts
+            .par_iter()
+            .map(|s| Some(local_search(*first, s, maximize)))
+            .collect(),
+        None => Vec::new(),
+    };
+    let mut coarse = work(&near);
+    for level in levels.iter().skip(1) {
+        near = refine(*level, &near, maximize);
+        let [i, h] = work(&near);
+        coarse = [coarse[0] + i, coarse[1] + h];
+    }
+    let results: Vec<LocalOptimum> = refine(model, &near, maximize)
+        .into_iter()
+        .flatten()
         .collect();
-    let skipped = near.len() - results.len();
-    (results, near.iter().map(|r| r.iterations).sum(), skipped)
+    let skipped = starts.len() - results.len();
+    (results, coarse, skipped)
 }
 
 /// The multistart search of the most (`maximize = false`) or least uniform form on
 /// `model`, from the whitened basis forms `basis` (the lowest-energy
 /// [`FormSearchOptions::basis_starts`] of them, by `basis_energy` when known, else
-/// evaluated) and the seeded random starts. With a
-/// `coarse` model (a sample of the faces, `faces.rs`), each start descends on it first
-/// and its optimum is then polished on `model`: the full Newton steps, `O(F n²)` each,
-/// are spent only near an optimum, where Newton converges in a few.
+/// evaluated) and the seeded random starts. With
+/// `coarse` models (samples of the faces, `faces.rs`, coarsest first), each start descends
+/// on the coarsest first and its optimum is then refined level by level and polished on
+/// `model`: the finer Newton steps, `O(F n²)` each on all faces, are spent only near an
+/// optimum, where Newton converges in a few.
 pub fn multistart<M: EnergyModel + ?Sized>(
     model: &M,
-    coarse: Option<&dyn EnergyModel>,
+    coarse: &[&dyn EnergyModel],
     basis: &[Vec<f64>],
     basis_energy: Option<&[f64]>,
     maximize: bool,
@@ -251,15 +303,16 @@ pub fn multistart<M: EnergyModel + ?Sized>(
     }
     starts.extend(random_directions(n, options.starts, options.seed));
     let (results, coarse_iterations, unpolished) = match coarse {
-        Some(c) => two_level(model, c, &starts, maximize),
-        None => {
+        [_, ..] => multi_level(model, coarse, &starts, maximize),
+        [] => {
             let results: Vec<LocalOptimum> = starts
                 .par_iter()
                 .map(|s| local_search(model, s, maximize))
                 .collect();
-            (results, 0, 0)
+            (results, [0, 0], 0)
         }
     };
+    let [coarse_iterations, coarse_hessians] = coarse_iterations;
     let better = |a: f64, b: f64| if maximize { a > b } else { a < b };
     let mut energies: Vec<f64> = results.iter().map(|r| r.energy).collect();
     energies.sort_by(|a, b| {
@@ -298,6 +351,7 @@ pub fn multistart<M: EnergyModel + ?Sized>(
         local_optimum_counts: counts,
         iterations_total: results.iter().map(|r| r.iterations).sum(),
         iterations_max: results.iter().map(|r| r.iterations).max().unwrap_or(0),
+        hessians_total: coarse_hessians + results.iter().map(|r| r.hessians).sum::<usize>(),
         unconverged: results.iter().filter(|r| !r.converged).count(),
         coarse_iterations,
         unpolished,

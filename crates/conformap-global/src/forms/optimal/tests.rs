@@ -472,6 +472,38 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
         for (a, b) in d.hessian.iter().zip(&m.hessian) {
             assert!((a - b).abs() < 1e-9 * hs, "hessian {a:e} vs {b:e}");
         }
+        // the O(F n) first-order pass is the aggregates' energy and gradient
+        let (e1, g1) = ff.first_order(&mu);
+        assert!((e1 - d.energy).abs() < 1e-13 * d.energy);
+        for (a, b) in g1.iter().zip(&d.gradient) {
+            assert!(
+                (a - b).abs() < 1e-12 * gs,
+                "first-order gradient {a:e} vs {b:e}"
+            );
+        }
+        // the great circle's trigonometric form is the energy on the circle
+        let w = {
+            let r: Vec<f64> = random_directions(n, 1, 5).remove(0);
+            let along: f64 = r.iter().zip(&mu).map(|(a, b)| a * b).sum();
+            unit(r.iter().zip(&mu).map(|(a, b)| a - along * b).collect())
+        };
+        let c = ff.great_circle(&mu, &w);
+        for theta in [0.0, 0.3, -1.1, 1.5] {
+            let (s, co) = f64::sin_cos(theta);
+            let on: Vec<f64> = mu.iter().zip(&w).map(|(a, b)| co * a + s * b).collect();
+            let (s2, c2) = f64::sin_cos(2.0 * theta);
+            let trig = c[0]
+                + 2.0 * c[1] * c2
+                + 2.0 * c[2] * s2
+                + c[3] * c2 * c2
+                + c[4] * s2 * s2
+                + 2.0 * c[5] * c2 * s2;
+            assert!(
+                (trig - ff.energy(&on)).abs() < 1e-12 * ff.energy(&on),
+                "circle {trig:e} vs {:e}",
+                ff.energy(&on)
+            );
+        }
     }
     let basis: Vec<Vec<f64>> = (0..n)
         .map(|k| {
@@ -484,8 +516,8 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
         .collect();
     let options = FormSearchOptions::DEFAULT.with_starts(8);
     let (d, m) = (
-        multistart(&ff, None, &basis, None, false, &options),
-        multistart(&moments, None, &basis, None, false, &options),
+        multistart(&ff, &[], &basis, None, false, &options),
+        multistart(&moments, &[], &basis, None, false, &options),
     );
     assert!(
         (d.energy - m.energy).abs() < 1e-10 * m.energy,
@@ -501,9 +533,32 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
     let coarse = ff.sample(3);
     assert_eq!(coarse.faces(), ff.faces().div_ceil(3));
     let coarse_model: &dyn super::uniform::EnergyModel = &coarse;
-    let two = multistart(&ff, Some(coarse_model), &basis, None, false, &options);
+    let two = multistart(&ff, &[coarse_model], &basis, None, false, &options);
     assert!((two.energy - m.energy).abs() < 1e-10 * m.energy, "{two:?}");
     assert!(two.coarse_iterations > 0 && two.unconverged == 0, "{two:?}");
+    // three levels (a ninth, a third, all): the same optimum, Hessians kept or seeded
+    let coarsest = ff.sample(9);
+    let coarsest_model: &dyn super::uniform::EnergyModel = &coarsest;
+    let three = multistart(
+        &ff,
+        &[coarsest_model, coarse_model],
+        &basis,
+        None,
+        false,
+        &options,
+    );
+    assert!(
+        (three.energy - m.energy).abs() < 1e-10 * m.energy,
+        "{three:?}"
+    );
+    assert_eq!(three.unconverged, 0, "{three:?}");
+    // at most one Hessian per Newton step plus one per search (3 levels of all starts)
+    let searches = 3 * (basis.len() + options.starts);
+    assert!(
+        three.hessians_total > 0
+            && three.hessians_total <= three.coarse_iterations + three.iterations_total + searches,
+        "{three:?}"
+    );
     // the cost model: the default search of a genus-2 surface on the moments, genus 23
     // with the topological optimization's 4 starts (armadillo's 86k faces) on the faces
     assert!(use_moments(map.input_faces, 4, 2 * (4 + 48)));
