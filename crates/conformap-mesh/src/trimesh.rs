@@ -910,7 +910,10 @@ mod tests {
         assert!(v > 4 * MATCH_SPLIT_VERTICES);
         let split = match_halfedges(v, &faces).unwrap();
         assert_eq!(split, match_halfedges_in_order(v, &faces).unwrap());
-        assert_eq!(split.iter().filter(|&&o| o == NO_HALFEDGE).count(), 4 * n as usize);
+        assert_eq!(
+            split.iter().filter(|&&o| o == NO_HALFEDGE).count(),
+            4 * n as usize
+        );
         // a face turned over near the end and a third face on an edge near the start
         let mut broken = faces.clone();
         let last = broken.len() - 7;
