@@ -313,14 +313,7 @@ pub fn local_search_seeded<M: EnergyModel + ?Sized>(
         let g: Vec<f64> = ev.gradient.iter().map(|x| sign * x).collect();
         let gnorm = g.iter().map(|x| x * x).sum::<f64>().sqrt();
         if gnorm <= tol(ev.energy) {
-            return LocalOptimum {
-                mu,
-                energy: ev.energy,
-                iterations: it,
-                converged: true,
-                hessians,
-                hessian: ev.hessian,
-            };
+            return LocalOptimum::at(mu, ev, it, true, hessians);
         }
         // P H P
         let h: Vec<f64> = ev.hessian.iter().map(|x| sign * x).collect();
@@ -369,14 +362,7 @@ pub fn local_search_seeded<M: EnergyModel + ?Sized>(
         let curved = -slope > moments.resolution() * ev.energy.abs();
         if !curved && flat_norm <= tol(ev.energy) {
             // the Newton model promises no decrease the energy can resolve
-            return LocalOptimum {
-                mu,
-                energy: ev.energy,
-                iterations: it,
-                converged: true,
-                hessians,
-                hessian: ev.hessian,
-            };
+            return LocalOptimum::at(mu, ev, it, true, hessians);
         }
         let mut accepted = Some((mu.clone(), false));
         let mut moved = false;
@@ -419,14 +405,7 @@ pub fn local_search_seeded<M: EnergyModel + ?Sized>(
         }
         if !moved {
             // neither the Newton step nor the great circle resolves a decrease
-            return LocalOptimum {
-                mu,
-                energy: ev.energy,
-                iterations: it,
-                converged: true,
-                hessians,
-                hessian: ev.hessian,
-            };
+            return LocalOptimum::at(mu, ev, it, true, hessians);
         }
         match accepted {
             Some((next, full_step)) => {
@@ -435,24 +414,31 @@ pub fn local_search_seeded<M: EnergyModel + ?Sized>(
                 ev = next_evaluation(moments, &mu, ev, (full_step, gnorm, known), &mut hessians);
             }
             None => {
-                return LocalOptimum {
-                    mu,
-                    energy: ev.energy,
-                    iterations: it,
-                    converged: gnorm <= 1e3 * tol(ev.energy),
-                    hessians,
-                    hessian: ev.hessian,
-                }
+                let converged = gnorm <= 1e3 * tol(ev.energy);
+                return LocalOptimum::at(mu, ev, it, converged, hessians);
             }
         }
     }
-    LocalOptimum {
-        mu,
-        energy: ev.energy,
-        iterations: MAX_NEWTON_ITERATIONS,
-        converged: false,
-        hessians,
-        hessian: ev.hessian,
+    LocalOptimum::at(mu, ev, MAX_NEWTON_ITERATIONS, false, hessians)
+}
+
+impl LocalOptimum {
+    /// The search's outcome at `mu`, evaluated as `ev` (its Hessian kept as the seed).
+    fn at(
+        mu: Vec<f64>,
+        ev: Evaluation,
+        iterations: usize,
+        converged: bool,
+        hessians: usize,
+    ) -> Self {
+        Self {
+            mu,
+            energy: ev.energy,
+            iterations,
+            converged,
+            hessians,
+            hessian: ev.hessian,
+        }
     }
 }
 
