@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use conformap_mesh::{cut_graph, cut_mesh, homology_basis, CutMesh, EdgeIndex, Topology, TriMesh};
 use num_complex::Complex64;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::double_cover::double_cover_surface;
@@ -44,9 +45,10 @@ pub struct GlobalTimings {
     pub conjugate: f64,
     /// The objective: per-face area forms and the search or eigenproblem.
     pub objective: f64,
-    /// Combining and normalizing the form, integrating it over the fundamental domain.
+    /// Combining and normalizing the form, integrating it over the fundamental domain (and,
+    /// on the other core meanwhile, the form's per-vertex stretch and conformal factor).
     pub layout: f64,
-    /// Windings, zeros, conformal factor.
+    /// Windings and zeros.
     pub zeros: f64,
     /// Quality metrics.
     pub metrics: f64,
@@ -340,6 +342,8 @@ pub(crate) fn global_map_ranked(
             .unwrap_or(0)
     });
     let combined: ComplexCochain = (0..basis.edges.halfedge.len())
+        .into_par_iter()
+        .with_min_len(4096)
         .map(|e| {
             forms
                 .iter()
@@ -360,10 +364,18 @@ pub(crate) fn global_map_ranked(
     }
     let scale = (total / area).sqrt();
     let form: ComplexCochain = phi.iter().map(|z| z * scale).collect();
-    let layout = integrate(&surface, &cut, &basis.edges, &form);
+    // the layout (a sequential walk over the cut mesh) on one core, the per-vertex stretch
+    // and conformal factor of the form on the other; the zeros need both
+    let (layout, (stretch, conformal_factor)) = rayon::join(
+        || integrate(&surface, &cut, &basis.edges, &form),
+        || {
+            let stretch = vertex_stretch(&surface, &basis.edges, &form);
+            let factor = conformal_factor(&surface, &basis.edges, &form);
+            (stretch, factor)
+        },
+    );
     timings.layout = ms(t);
     let t = Instant::now();
-    let stretch = vertex_stretch(&surface, &basis.edges, &form);
     let zeros = find_zeros(&surface, &layout.corner_uv, &stretch);
     finish_zeros(
         &mut objective,
@@ -373,7 +385,8 @@ pub(crate) fn global_map_ranked(
         &zeros,
         input_vertices,
     );
-    let conformal_factor = conformal_factor(&surface, &basis.edges, &form);
+    // `layout` is the wall time of the pair above (the stretch and conformal factor
+    // included), `zeros` the search for zeros alone
     timings.zeros = ms(t);
     let t = Instant::now();
     let metrics = layout_metrics(

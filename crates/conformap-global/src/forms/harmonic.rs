@@ -263,8 +263,11 @@ impl HarmonicFactor {
                         0.5 * (d[v] - d[w])
                     }));
                 }
-                chol_n.solve_in_place(&mut rn, k);
-                chol_d.solve_in_place(&mut rd, k);
+                // the two halves are independent: one core each (each solve is sequential)
+                rayon::join(
+                    || chol_n.solve_in_place(&mut rn, k),
+                    || chol_d.solve_in_place(&mut rd, k),
+                );
                 let pinned = vec![0.0; neumann.boundary.len()];
                 let fixed = vec![0.0; dirichlet.boundary.len()];
                 (0..k)

@@ -2,6 +2,8 @@
 //! to the boost vector (the parameters of [`crate::optimize_sphere_mobius`] and
 //! [`crate::optimize_disk_mobius`]).
 
+use std::cell::RefCell;
+
 use num_complex::Complex64;
 use rayon::prelude::*;
 
@@ -11,6 +13,11 @@ use crate::stereo::{cross, norm, sub};
 /// Faces per rayon task: large enough that scheduling costs nothing next to the work
 /// (about 50 µs of it), small enough to split a 10k-face mesh over a few cores.
 const PAR_CHUNK: usize = 4096;
+
+/// Faces per chunk of the gradient's parallel sum: each chunk is summed sequentially and the
+/// chunks' sums are added in order (the same rounding on any number of threads); 4096 faces
+/// are ~0.1 ms of work, so a 100k-face mesh splits into ~25 chunks over the cores.
+const SUM_CHUNK: usize = 4096;
 
 /// What is minimized: the uniformity energy, or minus the emphasized region's image share.
 #[derive(Debug, Clone, Copy)]
@@ -94,11 +101,23 @@ fn ball_jacobian_t(u: &[f64], v: &[f64]) -> Vec<f64> {
 
 /// The sphere problem: base points on the unit sphere and faces.
 pub(crate) struct SphereProblem<'a> {
-    pub points: &'a [[f64; 3]],
-    pub faces: &'a [[u32; 3]],
+    points: &'a [[f64; 3]],
+    faces: &'a [[u32; 3]],
+    /// The per-vertex and per-face arrays of [`Self::eval`], kept between evaluations (each
+    /// fresh 1–2 MB array cost its page faults on every one of ~150 evaluations).
+    scratch: RefCell<(Vec<[f64; 4]>, Vec<f64>)>,
 }
 
-impl SphereProblem<'_> {
+impl<'a> SphereProblem<'a> {
+    /// The problem of the unit-sphere `points` (per vertex) and `faces`.
+    pub fn new(points: &'a [[f64; 3]], faces: &'a [[u32; 3]]) -> Self {
+        Self {
+            points,
+            faces,
+            scratch: RefCell::new((Vec::new(), Vec::new())),
+        }
+    }
+
     /// The boosted points `φ_α(x) = (1 − |α|²)(x − α)/|x − α|² − α` (see
     /// [`crate::boost_sphere_point`]), with `α` computed once.
     pub fn boosted(&self, u: &[f64]) -> Vec<[f64; 3]> {
@@ -116,78 +135,99 @@ impl SphereProblem<'_> {
             .collect()
     }
 
-    /// Energy and gradient with respect to `u ∈ ℝ³`: face areas and each corner's
-    /// `w_f ∇_k A_f` in parallel over faces, a sequential scatter into per-vertex `∂E/∂y_i`,
-    /// then `∂E/∂α = Σ_i J_iᵀ ∂E/∂y_i` in parallel over vertices (one Jacobian per vertex,
-    /// not per corner: six times fewer divisions).
+    /// Energy and gradient with respect to `u ∈ ℝ³`, in three passes: the boosted points
+    /// with `1/|x − α|²` per vertex, the image areas per face (then the target's `∂E/∂A_f`),
+    /// and `∂E/∂α = Σ_f Σ_k J_{f_k}ᵀ w_f ∇_k A_f` summed face by face in fixed chunks
+    /// ([`SUM_CHUNK`]). No per-corner or per-vertex gradient array is stored and scattered:
+    /// each corner applies its vertex's Jacobian directly (the `1/|x − α|²` kept from the
+    /// first pass, so no division per corner), and the chunks' sums are added in order, so
+    /// the result does not depend on the thread count or on scheduling.
     pub fn eval(&self, u: &[f64], target: Target<'_>) -> (f64, Vec<f64>) {
         let t = u.iter().map(|x| x * x).sum::<f64>().sqrt();
         let g = half_tanh_ratio(t);
         let al = [g * u[0], g * u[1], g * u[2]];
         let r = 1.0 - (al[0] * al[0] + al[1] * al[1] + al[2] * al[2]);
-        let y: Vec<[f64; 3]> = self.boosted(u);
-        let normals: Vec<[f64; 3]> = self
-            .faces
-            .par_iter()
+        let (points, faces) = (self.points, self.faces);
+        let mut scratch = self.scratch.borrow_mut();
+        let (yq, areas) = &mut *scratch;
+        // y_i = r (x_i − α)/|x_i − α|² − α and 1/|x_i − α|²
+        yq.resize(points.len(), [0.0; 4]);
+        yq.par_iter_mut()
             .with_min_len(PAR_CHUNK)
-            .map(|f| {
-                let p = f.map(|v| y[v as usize]);
-                cross(sub(p[1], p[0]), sub(p[2], p[0]))
+            .zip(points)
+            .for_each(|(out, x)| {
+                let d = sub(*x, al);
+                let iq = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                let s = r * iq;
+                *out = [s * d[0] - al[0], s * d[1] - al[1], s * d[2] - al[2], iq];
+            });
+        let yq = &*yq;
+        let corners = |f: &[u32; 3]| {
+            f.map(|v| {
+                let q = yq[v as usize];
+                [q[0], q[1], q[2]]
             })
-            .collect();
-        let areas: Vec<f64> = normals.iter().map(|n| 0.5 * norm(*n)).collect();
-        let (e, w) = area_weights(&areas, target);
+        };
+        areas.resize(faces.len(), 0.0);
+        areas
+            .par_iter_mut()
+            .with_min_len(PAR_CHUNK)
+            .zip(faces)
+            .for_each(|(a, f)| {
+                let p = corners(f);
+                *a = 0.5 * norm(cross(sub(p[1], p[0]), sub(p[2], p[0])));
+            });
+        let areas = &*areas;
+        let (e, w) = area_weights(areas, target);
         if !e.is_finite() {
             return (f64::INFINITY, vec![0.0; 3]);
         }
-        // w_f ∇_k A_f = w_f ½ n̂ × (p_{k+2} − p_{k+1}) for each corner
-        let corners: Vec<[[f64; 3]; 3]> = self
-            .faces
-            .par_iter()
-            .with_min_len(PAR_CHUNK)
-            .zip(normals.par_iter().zip(w.par_iter()))
-            .map(|(f, (n, wf))| {
-                let nn = norm(*n);
-                if !(nn > 0.0) {
-                    return [[0.0; 3]; 3];
+        // per corner: c = w_f ∇_k A_f = w_f ½ n̂ × (p_{k+2} − p_{k+1}), and
+        // J_iᵀ c = −2 α (d·c) q⁻¹ − (r q⁻¹ + 1) c + 2 r d (d·c) q⁻² for d = x_i − α, q = |d|²;
+        // summed as a·α + b + c' (a scalar, b and c' vectors): seven numbers per chunk
+        let partial: Vec<[f64; 7]> = faces
+            .par_chunks(SUM_CHUNK)
+            .zip(w.par_chunks(SUM_CHUNK).zip(areas.par_chunks(SUM_CHUNK)))
+            .map(|(faces, (w, a))| {
+                // s_f = ½ w_f/|n_f| = w_f/(4 A_f), in a loop of its own (vectorized
+                // divisions, off the per-face dependency chain); 0 for a collapsed face
+                let coef: Vec<f64> = w
+                    .iter()
+                    .zip(a)
+                    .map(|(wf, af)| if *af > 0.0 { wf / (4.0 * af) } else { 0.0 })
+                    .collect();
+                let mut acc = [0.0f64; 7];
+                for (f, &s) in faces.iter().zip(&coef) {
+                    if s == 0.0 {
+                        continue;
+                    }
+                    let p = corners(f);
+                    let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+                    for k in 0..3 {
+                        let e = cross(n, sub(p[(k + 2) % 3], p[(k + 1) % 3]));
+                        let c = [s * e[0], s * e[1], s * e[2]];
+                        let v = f[k] as usize;
+                        let d = sub(points[v], al);
+                        let iq = yq[v][3];
+                        let dc = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+                        let (c2, c3) = (-(r * iq + 1.0), 2.0 * r * dc * iq * iq);
+                        acc[0] -= 2.0 * dc * iq;
+                        for j in 0..3 {
+                            acc[1 + j] += c2 * c[j];
+                            acc[4 + j] += c3 * d[j];
+                        }
+                    }
                 }
-                let s = 0.5 * wf / nn;
-                let p = f.map(|v| y[v as usize]);
-                [0, 1, 2].map(|k| {
-                    let c = cross(*n, sub(p[(k + 2) % 3], p[(k + 1) % 3]));
-                    [s * c[0], s * c[1], s * c[2]]
-                })
+                acc
             })
             .collect();
-        let mut gy = vec![[0.0f64; 3]; y.len()];
-        for (f, c) in self.faces.iter().zip(&corners) {
-            for k in 0..3 {
-                let gi = &mut gy[f[k] as usize];
-                for j in 0..3 {
-                    gi[j] += c[k][j];
-                }
+        let mut sum = [0.0f64; 7];
+        for a in &partial {
+            for (s, x) in sum.iter_mut().zip(a) {
+                *s += x;
             }
         }
-        // Jᵀ G = −2 α (d·G)/q − (r/q + 1) G + 2 r d (d·G)/q² for d = x − α, q = |d|²
-        let ga = self
-            .points
-            .par_iter()
-            .with_min_len(PAR_CHUNK)
-            .zip(gy.par_iter())
-            .fold(
-                || [0.0f64; 3],
-                |mut acc, (x, gi)| {
-                    let d = sub(*x, al);
-                    let iq = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                    let dg = d[0] * gi[0] + d[1] * gi[1] + d[2] * gi[2];
-                    let (c1, c2, c3) = (-2.0 * dg * iq, -(r * iq + 1.0), 2.0 * r * dg * iq * iq);
-                    for j in 0..3 {
-                        acc[j] += c1 * al[j] + c2 * gi[j] + c3 * d[j];
-                    }
-                    acc
-                },
-            )
-            .reduce(|| [0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
+        let ga = [0, 1, 2].map(|j| sum[0] * al[j] + sum[1 + j] + sum[4 + j]);
         (e, ball_jacobian_t(u, &ga))
     }
 }
@@ -285,10 +325,7 @@ mod tests {
         let pts: Vec<[f64; 3]> = mesh.positions().iter().map(|p| normalize(*p)).collect();
         let shares = crate::mobius::energy::surface_shares(&mesh);
         let mask: Vec<bool> = (0..mesh.num_faces()).map(|f| f % 3 == 0).collect();
-        let prob = SphereProblem {
-            points: &pts,
-            faces: mesh.faces(),
-        };
+        let prob = SphereProblem::new(&pts, mesh.faces());
         for u in [
             [0.0, 0.0, 0.0],
             [0.3, -0.5, 0.2],

@@ -9,7 +9,7 @@ use conformap_disk::initial::angenent_rhs;
 use conformap_mesh::{Topology, TriMesh};
 use conformap_operators::{
     cotan_laplacian, intrinsic_delaunay_laplacian, relative_residual, triangle_angles, Cholesky,
-    LaplacianBlocks, Partition,
+    CholeskyOptions, LaplacianBlocks, Ordering, Partition,
 };
 use num_complex::Complex64;
 use sprs::CsMat;
@@ -260,6 +260,11 @@ fn solve_with(
     timings.assemble += ms(t);
     let t = Instant::now();
     let factor = Cholesky::factor(&blocks.ii)?;
+    // each vertex's elimination rank: the corrections' factorizations inherit the order
+    let mut rank = vec![u32::MAX; n];
+    for (k, p) in factor.permutation().into_iter().enumerate() {
+        rank[part.interior[p] as usize] = k as u32;
+    }
     timings.factor += ms(t);
     let t = Instant::now();
     let mut rhs = vec![Complex64::new(0.0, 0.0); n - 1];
@@ -291,7 +296,8 @@ fn solve_with(
     let mut factorizations = 1;
     for k in 0..options.max_corrections {
         let from_south = k % 2 == 0;
-        let (next, nfixed, fms) = correct(l, &best_points, options.fixed_fraction, from_south)?;
+        let (next, nfixed, fms) =
+            correct(l, &best_points, &rank, options.fixed_fraction, from_south)?;
         factorizations += 1;
         timings.factor += fms;
         fixed_vertices = nfixed;
@@ -441,9 +447,16 @@ fn stage_record(
 /// One correction: keep the `fraction` of vertices nearest the south pole (`from_south`) or
 /// the north pole, and re-solve the rest as a harmonic map in the chart centred on the other
 /// pole. Returns the new points, the number kept and the factorization time.
+///
+/// The factorization eliminates the free vertices in the order of the first stage's
+/// (`rank`, per vertex): an elimination order restricted to a principal submatrix fills no
+/// more than it did on the whole, and the fresh fill-reducing ordering it saves was a third
+/// of each correction's factorization (armadillo: the three factorizations 235–245 → 191–194
+/// ms).
 fn correct(
     l: &CsMat<f64>,
     points: &[[f64; 3]],
+    rank: &[u32],
     fraction: f64,
     from_south: bool,
 ) -> Result<(Vec<[f64; 3]>, usize, f64), GlobalError> {
@@ -460,7 +473,10 @@ fn correct(
     let part = Partition::new(n, &kept);
     let blocks = LaplacianBlocks::new(l, &part);
     let t = Instant::now();
-    let factor = Cholesky::factor(&blocks.ii)?;
+    let mut perm: Vec<usize> = (0..part.interior.len()).collect();
+    perm.sort_unstable_by_key(|&p| (rank[part.interior[p] as usize], p));
+    let inherited = CholeskyOptions::DEFAULT.with_ordering(Ordering::Custom(perm));
+    let factor = Cholesky::factor_with(&blocks.ii, &inherited)?;
     let fms = ms(t);
     // the chart where the free region is finite: σ (centred on the north pole) when the
     // south cap is kept, τ otherwise
