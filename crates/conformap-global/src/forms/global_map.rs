@@ -14,7 +14,7 @@ use crate::forms::cohomology::{cohomology_basis, edge_weights};
 use crate::forms::conjugate::{conjugation, ConjugateMethod};
 use crate::forms::harmonic::{ms, HarmonicFactor};
 use crate::forms::layout::integrate;
-use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
+use crate::forms::optimal::{choose, finish_zeros, Objective, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{
     bilinear_residual, harmonic_periods, holomorphic_basis, period_matrix, reduce_modulus,
@@ -303,7 +303,7 @@ pub(crate) fn global_map_ranked(
     timings.solve = harmonic.solve_ms;
     let t = Instant::now();
     let conj = conjugation(&basis, &weights, &harmonic.forms, surface.num_faces())?;
-    let forms = holomorphic_basis(&harmonic.forms, conj.matrix(options.conjugate));
+    let lambda = conj.matrix(options.conjugate);
     let ph = harmonic_periods(&basis, &harmonic.forms);
     let periods = period_matrix(&ph, conj.matrix(options.conjugate), n);
     let plain_periods = period_matrix(&ph, &conj.gu_yau, n);
@@ -321,19 +321,41 @@ pub(crate) fn global_map_ranked(
     };
     timings.conjugate = ms(t);
     let s_area = conformap_operators::face_areas(&surface);
-    let mut objective = choose(
-        &Surface {
-            mesh: &surface,
-            edges: &basis.edges,
-            forms: &forms,
-            input_faces,
-            input_vertices,
-        },
-        &options.objective,
-        options.form,
-        &options.search,
-    )?;
+    let choose_with = |forms: Option<&[ComplexCochain]>| {
+        choose(
+            &Surface {
+                mesh: &surface,
+                edges: &basis.edges,
+                harmonic: &harmonic.forms,
+                lambda,
+                forms,
+                input_faces,
+                input_vertices,
+            },
+            &options.objective,
+            options.form,
+            &options.search,
+        )
+    };
+    // the complex basis (`edges × 2g`, mostly fresh pages to fault in) is built on one
+    // core while the objective, which works from the real forms and `Λ`, runs; the
+    // zero-allocation objective needs the basis itself first
+    let t = Instant::now();
+    let (forms, objective) = if matches!(options.objective, Objective::Zeros { .. }) {
+        let forms = holomorphic_basis(&harmonic.forms, lambda);
+        let objective = choose_with(Some(&forms));
+        (forms, objective)
+    } else {
+        rayon::join(
+            || holomorphic_basis(&harmonic.forms, lambda),
+            || choose_with(None),
+        )
+    };
+    let mut objective = objective?;
+    // the objective's own time (its products and search); the pair's wall time beyond it,
+    // the basis's share, counts as conjugation
     timings.objective = objective.products_ms + objective.solve_ms;
+    timings.conjugate += (ms(t) - timings.objective).max(0.0);
     let t = Instant::now();
     let form_uniformity = objective.basis_uniformity.clone();
     let form_index = options.form.unwrap_or_else(|| {

@@ -20,8 +20,10 @@ use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
 use crate::forms::blocked::{times_small_in_place, transpose_times};
+use crate::forms::cohomology::Cochain;
 use crate::forms::dense::{symmetric_eigen, symmetric_function};
 use crate::forms::optimal::moments::Aggregates;
+#[cfg(test)]
 use crate::forms::periods::ComplexCochain;
 use crate::GlobalError;
 
@@ -150,6 +152,7 @@ impl FaceForms {
     /// # Errors
     /// [`GlobalError::DegenerateFormBasis`] if the total area form `C` is not positive
     /// definite.
+    #[cfg(test)]
     pub fn new(
         mesh: &TriMesh,
         edges: &EdgeIndex,
@@ -159,10 +162,7 @@ impl FaceForms {
         let n = forms.len();
         let (mut ar, mut ai) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
         let (mut br, mut bi) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
-        // each face's two edges and orientations, looked up once for all forms
-        let at: Vec<[(usize, f64); 2]> = (0..faces)
-            .map(|f| [3 * f, 3 * f + 2].map(|h| (edges.edge_of[h] as usize, edges.sign(h))))
-            .collect();
+        let at = face_edges(edges, faces);
         for (k, form) in forms.iter().enumerate() {
             let (c0, c1) = (ar.col_as_slice_mut(k), ai.col_as_slice_mut(k));
             for (r, &[(e1, s1), _]) in at.iter().enumerate() {
@@ -177,6 +177,56 @@ impl FaceForms {
                 c3[r] = b.im;
             }
         }
+        Self::finish(mesh, faces, [ar, ai, br, bi])
+    }
+
+    /// [`Self::new`] for the holomorphic basis `a_k = h_k + i Σ_j Λ_jk h_j` of the real
+    /// harmonic forms `h` and the conjugation `Λ` (`lambda`, row-major `n × n`), without the
+    /// basis itself: the real parts are the harmonic forms' edge values and the imaginary
+    /// parts their product with `Λ` (`Im a = Re a · Λ`, one dense `faces × n` by `n × n`
+    /// product per edge), so the `edges × n` complex basis (125 MB on armadillo's
+    /// 15-slit double covering) need not exist first: [`crate::global_map`] builds it on
+    /// the other core meanwhile. Equal to [`Self::new`] on that basis up to rounding.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn from_harmonic(
+        mesh: &TriMesh,
+        edges: &EdgeIndex,
+        h: &[Cochain],
+        lambda: &[f64],
+        faces: usize,
+    ) -> Result<Self, GlobalError> {
+        let n = h.len();
+        let (mut ar, mut ai) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
+        let (mut br, mut bi) = (Mat::<f64>::zeros(faces, n), Mat::<f64>::zeros(faces, n));
+        let at = face_edges(edges, faces);
+        for (k, form) in h.iter().enumerate() {
+            let (c0, c1) = (ar.col_as_slice_mut(k), ai.col_as_slice_mut(k));
+            for (r, &[(e1, s1), _]) in at.iter().enumerate() {
+                c0[r] = s1 * form[e1];
+                c1[r] = c0[r];
+            }
+            let (c2, c3) = (br.col_as_slice_mut(k), bi.col_as_slice_mut(k));
+            for (r, &[_, (e2, s2)]) in at.iter().enumerate() {
+                c2[r] = -(s2 * form[e2]);
+                c3[r] = c2[r];
+            }
+        }
+        for m in [&mut ai, &mut bi] {
+            times_small_in_place(m, lambda);
+        }
+        Self::finish(mesh, faces, [ar, ai, br, bi])
+    }
+
+    /// The area form, the basis energies and the whitening of the per-face edge values
+    /// `[Re a, Im a, Re b, Im b]` (`faces × n` each, not yet whitened).
+    fn finish(
+        mesh: &TriMesh,
+        faces: usize,
+        [mut ar, mut ai, mut br, mut bi]: [Mat<f64>; 4],
+    ) -> Result<Self, GlobalError> {
+        let n = ar.ncols();
         // C = Σ_f Q_f = ¼ (X + Xᵀ), X = Re aᵀ Im b − Im aᵀ Re b
         let (x, y) = rayon::join(|| transpose_times(&ar, &bi), || transpose_times(&ai, &br));
         let c: Vec<f64> = (0..n * n)
@@ -562,5 +612,13 @@ fn mat_vec(m: &[f64], v: &[f64]) -> Vec<f64> {
     let n = v.len();
     (0..n)
         .map(|i| (0..n).map(|j| m[i * n + j] * v[j]).sum())
+        .collect()
+}
+
+/// Each of the first `faces` faces' two edges from its first corner (`v0 → v1`, `v0 → v2`)
+/// and their orientations, looked up once for all forms.
+fn face_edges(edges: &EdgeIndex, faces: usize) -> Vec<[(usize, f64); 2]> {
+    (0..faces)
+        .map(|f| [3 * f, 3 * f + 2].map(|h| (edges.edge_of[h] as usize, edges.sign(h))))
         .collect()
 }

@@ -40,10 +40,11 @@ pub use search::{
 };
 pub use uniform::{GRADIENT_TOL, MAX_NEWTON_ITERATIONS};
 
+use crate::forms::cohomology::Cochain;
 use crate::forms::optimal::faces::FaceForms;
 use crate::forms::optimal::products::AreaProducts;
 use crate::forms::optimal::uniform::EnergyModel;
-use crate::forms::periods::ComplexCochain;
+use crate::forms::periods::{holomorphic_basis, ComplexCochain};
 use crate::forms::zeros::{vertex_stretch, ZeroReport};
 use crate::GlobalError;
 
@@ -172,7 +173,13 @@ pub struct ObjectiveReport {
 pub(crate) struct Surface<'a> {
     pub mesh: &'a TriMesh,
     pub edges: &'a EdgeIndex,
-    pub forms: &'a [ComplexCochain],
+    /// The real harmonic forms and the conjugation `Λ` (row-major): the holomorphic basis
+    /// is `a_k = h_k + i Σ_j Λ_jk h_j`.
+    pub harmonic: &'a [Cochain],
+    pub lambda: &'a [f64],
+    /// That basis, where it was built already (the zero-allocation objective needs it; the
+    /// others work from `harmonic` and `lambda`).
+    pub forms: Option<&'a [ComplexCochain]>,
     pub input_faces: usize,
     pub input_vertices: usize,
 }
@@ -189,7 +196,7 @@ pub(crate) fn choose(
     search: &FormSearchOptions,
 ) -> Result<ObjectiveReport, GlobalError> {
     let t = std::time::Instant::now();
-    let ff = FaceForms::new(s.mesh, s.edges, s.forms, s.input_faces)?;
+    let ff = FaceForms::from_harmonic(s.mesh, s.edges, s.harmonic, s.lambda, s.input_faces)?;
     let products_ms = ms(t);
     let t = std::time::Instant::now();
     let n = ff.n;
@@ -290,7 +297,15 @@ pub(crate) fn choose(
             targets.sort_unstable();
             targets.dedup();
             let p = AreaProducts::from_faces(&ff);
-            let m = targets::condition_gram(s.mesh, s.edges, s.forms, &p, &targets);
+            let built;
+            let forms = match s.forms {
+                Some(forms) => forms,
+                None => {
+                    built = holomorphic_basis(s.harmonic, s.lambda);
+                    &built
+                }
+            };
+            let m = targets::condition_gram(s.mesh, s.edges, forms, &p, &targets);
             let free = n.saturating_sub(2 * targets.len());
             let (mu, method) = if free >= 2 {
                 // exact zeros: the most uniform form of the subspace vanishing at the targets

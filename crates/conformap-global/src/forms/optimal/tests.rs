@@ -565,3 +565,55 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
     assert!(!use_moments(86_482, 46, 4));
     assert_eq!(map.objective.energy_model, "moments");
 }
+
+#[test]
+fn face_forms_from_harmonic_forms_and_their_conjugation_equal_those_of_the_basis() {
+    use super::faces::FaceForms;
+    let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
+    let forms = &map.basis_forms;
+    let n = forms.len();
+    // a_k = h_k + i Σ_j Λ_jk h_j: h the real parts, Λ recovered by least squares
+    let h: Vec<Vec<f64>> = forms
+        .iter()
+        .map(|a| a.iter().map(|z| z.re).collect())
+        .collect();
+    let mut gram: Vec<f64> = (0..n * n)
+        .map(|k| h[k / n].iter().zip(&h[k % n]).map(|(a, b)| a * b).sum())
+        .collect();
+    let mut rhs: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (col, j) = (k / n, k % n);
+            h[j].iter().zip(&forms[col]).map(|(a, z)| a * z.im).sum()
+        })
+        .collect();
+    conformap_operators::solve_dense_spd(&mut gram, n, &mut rhs, n, 1).expect("gram");
+    let lambda: Vec<f64> = (0..n * n).map(|k| rhs[(k % n) * n + k / n]).collect();
+    let rebuilt = crate::forms::periods::holomorphic_basis(&h, &lambda);
+    let scale = forms.iter().flatten().map(|z| z.norm()).fold(0.0, f64::max);
+    let off = rebuilt
+        .iter()
+        .flatten()
+        .zip(forms.iter().flatten())
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
+    assert!(
+        off < 1e-9 * scale,
+        "the basis is h + i hΛ: {off:e} of {scale:e}"
+    );
+    let direct = FaceForms::from_harmonic(&map.surface, &map.edges, &h, &lambda, map.input_faces)
+        .expect("from the harmonic forms");
+    let reference = FaceForms::new(&map.surface, &map.edges, &rebuilt, map.input_faces)
+        .expect("from the basis");
+    assert_eq!(direct.basis_energy.len(), n);
+    for (a, b) in direct.basis_energy.iter().zip(&reference.basis_energy) {
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs(),
+            "basis energy {a:e} vs {b:e}"
+        );
+    }
+    for dir in random_directions(n, 6, 5) {
+        let mu = unit(dir);
+        let (a, b) = (direct.energy(&mu), reference.energy(&mu));
+        assert!((a - b).abs() <= 1e-12 * b.abs(), "energy {a:e} vs {b:e}");
+    }
+}
