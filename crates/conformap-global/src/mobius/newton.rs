@@ -18,7 +18,8 @@ const MAX_DAMPING_TRIES: usize = 40;
 
 /// A step whose first-order predicted decrease `−g·Δx` is at most this share of `|f|` is
 /// below what an evaluation can resolve (the energies sum ~10⁵ face terms, each rounded at
-/// `ε`): the iteration stops there as converged instead of trying it. `64 ε`: on armadillo's
+/// `ε`): the iteration stops there as converged instead of trying it (an undamped Newton
+/// step is still taken, unevaluated). `64 ε`: on armadillo's
 /// uniform Möbius map the last useful Newton step predicts 3·10⁻¹³ of `f = 2.9·10⁻⁵`, the next
 /// one 10⁻¹⁷ of it, which took 28 of the start's 45 evaluations in damped trials before.
 const ROUNDING_DECREASE: f64 = 64.0 * f64::EPSILON;
@@ -221,7 +222,12 @@ pub(crate) fn minimize(eval: &EvalFn<'_>, x0: &[f64], settings: &NewtonSettings<
             if -pred <= ROUNDING_DECREASE * f.abs() {
                 // the step's predicted decrease is below the rounding of `f`: no trial can
                 // show a decrease any more (each would be damped again, up to
-                // MAX_DAMPING_TRIES evaluations), so `x` is the optimum to rounding
+                // MAX_DAMPING_TRIES evaluations). An undamped Newton step is taken without
+                // a trial (it only polishes the gradient, by rounding-level changes of
+                // `f`), a damped one is not; either way `x` is the optimum to rounding
+                if lambda == 0.0 {
+                    x = xt;
+                }
                 break;
             }
             let (ft, gt) = eval(&xt);
