@@ -10,11 +10,11 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::double_cover::double_cover_surface;
-use crate::forms::cohomology::{cohomology_basis, edge_weights};
+use crate::forms::cohomology::{cohomology_basis, edge_weights, Cochain};
 use crate::forms::conjugate::{conjugation, ConjugateMethod};
 use crate::forms::harmonic::{ms, HarmonicFactor};
 use crate::forms::layout::integrate;
-use crate::forms::optimal::{choose, finish_zeros, Objective, ObjectiveReport, Surface};
+use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{
     bilinear_residual, harmonic_periods, holomorphic_basis, period_matrix, reduce_modulus,
@@ -113,9 +113,12 @@ pub struct GlobalMap {
     pub form_index: usize,
     /// Uniformity energy of every basis form (over the input's faces).
     pub form_uniformity: Vec<f64>,
-    /// The holomorphic basis `φ_k = ω_k + i *ω_k` per edge of [`Self::surface`] (the
-    /// objective's coefficients combine these).
-    pub basis_forms: Vec<ComplexCochain>,
+    /// The real harmonic forms `ω_k` per edge of [`Self::surface`]: the real parts of the
+    /// holomorphic basis ([`Self::basis_forms`]).
+    pub harmonic_forms: Vec<Cochain>,
+    /// The conjugation `Λ` (row-major `2g × 2g`, of [`GlobalMapOptions::conjugate`]): the
+    /// conjugate forms are `*ω_k = Σ_j Λ_jk ω_j`.
+    pub conjugation: Vec<f64>,
     /// The laid-out form per edge of [`Self::surface`], scaled so that the layout's area
     /// equals the surface's (Jin et al. Eq. 6).
     pub form: ComplexCochain,
@@ -147,6 +150,13 @@ pub struct GlobalMap {
 }
 
 impl GlobalMap {
+    /// The holomorphic basis `φ_k = ω_k + i *ω_k` per edge of [`Self::surface`] (the
+    /// objective's coefficients combine these), built from [`Self::harmonic_forms`] and
+    /// [`Self::conjugation`] (`edges × 2g` complex numbers: kept only on demand).
+    pub fn basis_forms(&self) -> Vec<ComplexCochain> {
+        holomorphic_basis(&self.harmonic_forms, &self.conjugation)
+    }
+
     /// UV of every corner of the input's faces (`3 f + k`).
     pub fn input_corner_uv(&self) -> &[Complex64] {
         &self.corner_uv[..3 * self.input_faces]
@@ -303,7 +313,8 @@ pub(crate) fn global_map_ranked(
     timings.solve = harmonic.solve_ms;
     let t = Instant::now();
     let conj = conjugation(&basis, &weights, &harmonic.forms, surface.num_faces())?;
-    let lambda = conj.matrix(options.conjugate);
+    let lambda = conj.matrix(options.conjugate).to_vec();
+    let lambda_ref: &[f64] = &lambda;
     let ph = harmonic_periods(&basis, &harmonic.forms);
     let periods = period_matrix(&ph, conj.matrix(options.conjugate), n);
     let plain_periods = period_matrix(&ph, &conj.gu_yau, n);
@@ -321,41 +332,22 @@ pub(crate) fn global_map_ranked(
     };
     timings.conjugate = ms(t);
     let s_area = conformap_operators::face_areas(&surface);
-    let choose_with = |forms: Option<&[ComplexCochain]>| {
-        choose(
-            &Surface {
-                mesh: &surface,
-                edges: &basis.edges,
-                harmonic: &harmonic.forms,
-                lambda,
-                forms,
-                input_faces,
-                input_vertices,
-            },
-            &options.objective,
-            options.form,
-            &options.search,
-        )
-    };
-    // the complex basis (`edges × 2g`, mostly fresh pages to fault in) is built on one
-    // core while the objective, which works from the real forms and `Λ`, runs; the
-    // zero-allocation objective needs the basis itself first
-    let t = Instant::now();
-    let (forms, objective) = if matches!(options.objective, Objective::Zeros { .. }) {
-        let forms = holomorphic_basis(&harmonic.forms, lambda);
-        let objective = choose_with(Some(&forms));
-        (forms, objective)
-    } else {
-        rayon::join(
-            || holomorphic_basis(&harmonic.forms, lambda),
-            || choose_with(None),
-        )
-    };
-    let mut objective = objective?;
-    // the objective's own time (its products and search); the pair's wall time beyond it,
-    // the basis's share, counts as conjugation
+    // the objective works from the real forms and `Λ`: the complex basis (`edges × 2g`,
+    // 125 MB of fresh pages on armadillo's 15-slit covering) is never built here
+    let mut objective = choose(
+        &Surface {
+            mesh: &surface,
+            edges: &basis.edges,
+            harmonic: &harmonic.forms,
+            lambda: lambda_ref,
+            input_faces,
+            input_vertices,
+        },
+        &options.objective,
+        options.form,
+        &options.search,
+    )?;
     timings.objective = objective.products_ms + objective.solve_ms;
-    timings.conjugate += (ms(t) - timings.objective).max(0.0);
     let t = Instant::now();
     let form_uniformity = objective.basis_uniformity.clone();
     let form_index = options.form.unwrap_or_else(|| {
@@ -363,17 +355,7 @@ pub(crate) fn global_map_ranked(
             .min_by(|&a, &b| form_uniformity[a].total_cmp(&form_uniformity[b]))
             .unwrap_or(0)
     });
-    let combined: ComplexCochain = (0..basis.edges.halfedge.len())
-        .into_par_iter()
-        .with_min_len(4096)
-        .map(|e| {
-            forms
-                .iter()
-                .zip(&objective.coefficients)
-                .map(|(phi, l)| phi[e] * l)
-                .sum()
-        })
-        .collect();
+    let combined = combine(&harmonic.forms, lambda_ref, &objective.coefficients);
     let phi = &combined;
     let area: f64 = form_face_areas(&basis.edges, phi, surface.num_faces())
         .iter()
@@ -444,7 +426,8 @@ pub(crate) fn global_map_ranked(
         closedness_residual,
         form_index,
         form_uniformity,
-        basis_forms: forms,
+        harmonic_forms: harmonic.forms,
+        conjugation: lambda,
         form,
         corner_uv: layout.corner_uv,
         seam_residual: layout.seam_residual,
@@ -469,5 +452,24 @@ fn form_face_areas(edges: &EdgeIndex, phi: &[Complex64], faces: usize) -> Vec<f6
             let (a, b) = (val(3 * f), -val(3 * f + 2));
             0.5 * (a.conj() * b).im
         })
+        .collect()
+}
+
+/// `Σ_k c_k φ_k` (real `c`) per edge for the holomorphic basis `φ_k = ω_k + i Σ_j Λ_jk ω_j` of the real
+/// forms `h` and the conjugation `lambda` (row-major), without the basis: it is
+/// `Σ_j ω_j d_j` with `d_j = c_j + i Σ_k Λ_jk c_k`.
+fn combine(h: &[Cochain], lambda: &[f64], c: &[f64]) -> ComplexCochain {
+    let n = h.len();
+    let d: Vec<Complex64> = (0..n)
+        .map(|j| {
+            let conj: f64 = (0..n).map(|k| lambda[j * n + k] * c[k]).sum();
+            Complex64::new(c[j], conj)
+        })
+        .collect();
+    let edges = h.first().map_or(0, Vec::len);
+    (0..edges)
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|e| h.iter().zip(&d).map(|(w, dj)| dj * w[e]).sum())
         .collect()
 }

@@ -44,7 +44,7 @@ use crate::forms::cohomology::Cochain;
 use crate::forms::optimal::faces::FaceForms;
 use crate::forms::optimal::products::AreaProducts;
 use crate::forms::optimal::uniform::EnergyModel;
-use crate::forms::periods::{holomorphic_basis, ComplexCochain};
+use crate::forms::periods::holomorphic_basis;
 use crate::forms::zeros::{vertex_stretch, ZeroReport};
 use crate::GlobalError;
 
@@ -177,9 +177,6 @@ pub(crate) struct Surface<'a> {
     /// is `a_k = h_k + i Σ_j Λ_jk h_j`.
     pub harmonic: &'a [Cochain],
     pub lambda: &'a [f64],
-    /// That basis, where it was built already (the zero-allocation objective needs it; the
-    /// others work from `harmonic` and `lambda`).
-    pub forms: Option<&'a [ComplexCochain]>,
     pub input_faces: usize,
     pub input_vertices: usize,
 }
@@ -297,15 +294,9 @@ pub(crate) fn choose(
             targets.sort_unstable();
             targets.dedup();
             let p = AreaProducts::from_faces(&ff);
-            let built;
-            let forms = match s.forms {
-                Some(forms) => forms,
-                None => {
-                    built = holomorphic_basis(s.harmonic, s.lambda);
-                    &built
-                }
-            };
-            let m = targets::condition_gram(s.mesh, s.edges, forms, &p, &targets);
+            // the condition rows need the basis's values at the target vertices
+            let forms = holomorphic_basis(s.harmonic, s.lambda);
+            let m = targets::condition_gram(s.mesh, s.edges, &forms, &p, &targets);
             let free = n.saturating_sub(2 * targets.len());
             let (mu, method) = if free >= 2 {
                 // exact zeros: the most uniform form of the subspace vanishing at the targets

@@ -20,10 +20,11 @@ fn eightsim() -> TriMesh {
 /// Signed layout areas of the input's faces for coefficients `lambda`, straight from the
 /// basis forms' edge values (independent of the whitened products).
 pub(crate) fn direct_areas(map: &GlobalMap, lambda: &[f64]) -> Vec<f64> {
+    let forms = map.basis_forms();
     let val = |h: usize| -> Complex64 {
         let e = map.edges.edge_of[h] as usize;
         let s = map.edges.sign(h);
-        map.basis_forms
+        forms
             .iter()
             .zip(lambda)
             .map(|(phi, l)| phi[e] * (s * l))
@@ -71,7 +72,13 @@ pub(crate) fn unit(v: Vec<f64>) -> Vec<f64> {
 #[test]
 fn gradient_and_hessian_match_finite_differences() {
     let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
-    let p = area_products(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
+    let p = area_products(
+        &map.surface,
+        &map.edges,
+        &map.basis_forms(),
+        map.input_faces,
+    )
+    .unwrap();
     let n = p.n;
     let moments = Moments::new(&p);
     for dir in random_directions(n, 3, 7) {
@@ -383,12 +390,13 @@ fn surfaces_with_boundary_are_optimized_on_the_users_copy() {
 fn vertex_values_fit_holomorphic_forms_and_vanish_at_exact_targets() {
     let mesh = eightsim();
     let map = global_map(&mesh, &GlobalMapOptions::DEFAULT).expect("map");
-    let p = area_products(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
+    let forms = map.basis_forms();
+    let p = area_products(&map.surface, &map.edges, &forms, map.input_faces).unwrap();
     // the fit φ(e) ≈ c·ẽ of the chosen (uniform) form explains most of the star's values at
     // a vertex away from zeros (it would explain none with the frame's orientation flipped)
     let mu = p.whiten(&map.objective.coefficients);
     let v = 5;
-    let c = super::targets::vertex_values(&map.surface, &map.edges, &map.basis_forms, &p, v);
+    let c = super::targets::vertex_values(&map.surface, &map.edges, &forms, &p, v);
     let cv: Complex64 = c.iter().zip(&mu).map(|(c, m)| c * m).sum();
     let (mut phi2, mut len2) = (0.0, 0.0);
     for (e, &h) in map.edges.halfedge.iter().enumerate() {
@@ -400,7 +408,7 @@ fn vertex_values_fit_holomorphic_forms_and_vanish_at_exact_targets() {
             );
             len2 += (0..3).map(|i| (pa[i] - pb[i]).powi(2)).sum::<f64>();
             let z: Complex64 = p
-                .whitened_edge(&map.basis_forms, e)
+                .whitened_edge(&forms, e)
                 .iter()
                 .zip(&mu)
                 .map(|(z, m)| z * m)
@@ -414,13 +422,7 @@ fn vertex_values_fit_holomorphic_forms_and_vanish_at_exact_targets() {
         "the fit explains {explained:.3} of the star's |φ|²"
     );
     let targets = [10usize, 120];
-    let m = super::targets::condition_gram(
-        &map.surface,
-        &map.edges,
-        &map.basis_forms,
-        &p,
-        &targets[..1],
-    );
+    let m = super::targets::condition_gram(&map.surface, &map.edges, &forms, &p, &targets[..1]);
     let basis = super::targets::null_space(&m, p.n, p.n - 2);
     for col in 0..p.n - 2 {
         let nu: Vec<f64> = (0..p.n - 2)
@@ -454,7 +456,13 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
     use super::products::AreaProducts;
     use super::search::{multistart, FormSearchOptions};
     let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
-    let ff = FaceForms::new(&map.surface, &map.edges, &map.basis_forms, map.input_faces).unwrap();
+    let ff = FaceForms::new(
+        &map.surface,
+        &map.edges,
+        &map.basis_forms(),
+        map.input_faces,
+    )
+    .unwrap();
     let n = ff.n;
     let moments = Moments::from_faces(&ff);
     let p = AreaProducts::from_faces(&ff);
@@ -570,7 +578,7 @@ fn direct_face_sums_match_the_moments_and_reach_the_same_optimum() {
 fn face_forms_from_harmonic_forms_and_their_conjugation_equal_those_of_the_basis() {
     use super::faces::FaceForms;
     let map = global_map(&eightsim(), &GlobalMapOptions::DEFAULT).expect("map");
-    let forms = &map.basis_forms;
+    let forms = &map.basis_forms();
     let n = forms.len();
     // a_k = h_k + i Σ_j Λ_jk h_j: h the real parts, Λ recovered by least squares
     let h: Vec<Vec<f64>> = forms
