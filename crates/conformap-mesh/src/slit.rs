@@ -86,6 +86,12 @@ impl SlitPlanner {
         }
     }
 
+    /// The vertex adjacency of the mesh the planner was made for (computed once by
+    /// [`Self::new`]).
+    pub fn adjacency(&self) -> &Adjacency {
+        &self.adjacency
+    }
+
     /// The slits accepted so far.
     pub fn slits(&self) -> &[Vec<u32>] {
         &self.slits

@@ -259,7 +259,7 @@ fn add_slits(
     options: &TopologyOptOptions,
     (length, budget, need, relax): (f64, usize, usize, bool),
 ) -> (SlitPlanner, Vec<SlitRecord>) {
-    let adjacency = mesh.vertex_adjacency();
+    let adjacency = planner.adjacency();
     let log_ratio = vertex_log_area_ratio(mesh, &m.image);
     let (mut fraction, mut cap) = (
         options.extreme_area_fraction,
@@ -269,7 +269,7 @@ fn add_slits(
     let mut out = (planner.clone(), Vec::new());
     for _ in 0..rounds {
         let th = extreme_threshold(mesh, &log_ratio, &m.excluded, fraction, cap);
-        let clusters = extreme_clusters(mesh, &adjacency, &log_ratio, &m.excluded, th);
+        let clusters = extreme_clusters(mesh, adjacency, &log_ratio, &m.excluded, th);
         let mut trial = planner.clone();
         let mut added = Vec::new();
         for c in &clusters {
