@@ -1,5 +1,5 @@
-//! The per-face edge values of the whitened holomorphic basis, and the uniformity energy,
-//! gradient and Hessian summed straight over the faces from them.
+//! The per-face edge values of the holomorphic basis, and the uniformity energy, gradient
+//! and Hessian (in whitened coordinates) summed straight over the faces from them.
 //!
 //! A face's layout area is `a_f = ½ Im(conj(A_f) B_f)` with `A_f = Σ_k μ_k a_{f,k}` and
 //! `B_f = Σ_k μ_k b_{f,k}` the form's values on the face's edges `v0 → v1` and `v0 → v2`
@@ -108,9 +108,10 @@ pub fn use_moments(faces: usize, n: usize, starts: usize) -> bool {
     moments <= starts as f64 * per_start
 }
 
-/// The whitened basis forms' values on the two edges `v0 → v1` (`a`) and `v0 → v2` (`b`)
-/// of each of the user's faces (`faces × n` matrices), the surface shares, and the
-/// whitening.
+/// The basis forms' values on the two edges `v0 → v1` (`a`) and `v0 → v2` (`b`) of each
+/// of the user's faces (`faces × n` matrices, unwhitened), the surface shares, and the
+/// whitening `W`: the models work in whitened coordinates `μ` (basis coefficients
+/// `λ = W μ`), applying `W` to the coefficients and to the `n`-sized sums.
 #[derive(Debug, Clone)]
 pub struct FaceForms {
     /// `2g`.
@@ -225,7 +226,7 @@ impl FaceForms {
     fn finish(
         mesh: &TriMesh,
         faces: usize,
-        [mut ar, mut ai, mut br, mut bi]: [Mat<f64>; 4],
+        [ar, ai, br, bi]: [Mat<f64>; 4],
     ) -> Result<Self, GlobalError> {
         let n = ar.ncols();
         // C = Σ_f Q_f = ¼ (X + Xᵀ), X = Re aᵀ Im b − Im aᵀ Re b
@@ -260,11 +261,11 @@ impl FaceForms {
                     .sum()
             })
             .collect();
+        // the whitening is applied to the coefficients and to the `n`-sized sums, never to
+        // the `faces × n` matrices (four dense products of them per model, ~20 ms on
+        // armadillo's 15-slit covering, saved)
         let w = symmetric_function(&c, n, |x| 1.0 / x.sqrt());
         let w_inv = symmetric_function(&c, n, f64::sqrt);
-        for m in [&mut ar, &mut ai, &mut br, &mut bi] {
-            times_small_in_place(m, &w);
-        }
         Ok(Self {
             n,
             ar,
@@ -314,12 +315,15 @@ impl FaceForms {
         mat_vec(&self.w_inv, lambda)
     }
 
-    /// `Q̃_f[i][j] = ¼ (Im(conj(a_i) b_j) + Im(conj(a_j) b_i))`.
-    pub fn area_form_entry(&self, f: usize, i: usize, j: usize) -> f64 {
-        let m = |k: usize, l: usize| {
-            self.ar[(f, k)] * self.bi[(f, l)] - self.ai[(f, k)] * self.br[(f, l)]
-        };
-        0.25 * (m(i, j) + m(j, i))
+    /// The whitened edge values `[Re a, Im a, Re b, Im b]` (the matrices times `W`),
+    /// built for the models that need every face's whitened area form (the moments, the
+    /// per-face products).
+    pub fn whitened(&self) -> Whitened {
+        let mut m = [&self.ar, &self.ai, &self.br, &self.bi].map(Mat::clone);
+        for x in &mut m {
+            times_small_in_place(x, &self.w);
+        }
+        Whitened(m)
     }
 
     /// The block ranges of the direct sums.
@@ -330,11 +334,12 @@ impl FaceForms {
             .collect()
     }
 
-    /// `A_f`, `B_f` (real and imaginary parts) of the rows `start..start + len` for `μ`.
-    fn edge_values(&self, mu: &[f64], start: usize, len: usize) -> [Vec<f64>; 4] {
+    /// `A_f`, `B_f` (real and imaginary parts) of the rows `start..start + len` for the
+    /// basis coefficients `lambda = W μ`.
+    fn edge_values(&self, lambda: &[f64], start: usize, len: usize) -> [Vec<f64>; 4] {
         [&self.ar, &self.ai, &self.br, &self.bi].map(|m| {
             let mut out = vec![0.0; len];
-            for (k, &c) in mu.iter().enumerate() {
+            for (k, &c) in lambda.iter().enumerate() {
                 let col = &m.col_as_slice(k)[start..start + len];
                 for (o, x) in out.iter_mut().zip(col) {
                     *o += c * x;
@@ -347,11 +352,12 @@ impl FaceForms {
     /// `E(μ) = Σ_f (a_f/|μ|² − s_f)²` for `μ ≠ 0` (any length), summed over the faces.
     pub fn energy(&self, mu: &[f64]) -> f64 {
         let norm2: f64 = mu.iter().map(|x| x * x).sum();
+        let lambda = self.coefficients(mu);
         let parts: Vec<f64> = self
             .blocks()
             .par_iter()
             .map(|&(start, len)| {
-                let [a_r, a_i, b_r, b_i] = self.edge_values(mu, start, len);
+                let [a_r, a_i, b_r, b_i] = self.edge_values(&lambda, start, len);
                 (0..len)
                     .map(|r| {
                         let a = 0.5 * (a_r[r] * b_i[r] - a_i[r] * b_r[r]);
@@ -367,16 +373,20 @@ impl FaceForms {
     /// parallel, added in their order).
     pub fn aggregates(&self, mu: &[f64]) -> Aggregates {
         let n = self.n;
+        let lambda = self.coefficients(mu);
         let parts: Vec<Partial> = self
             .blocks()
             .par_iter()
-            .map(|&(start, len)| self.block_aggregates(mu, start, len))
+            .map(|&(start, len)| self.block_aggregates(&lambda, start, len))
             .collect();
         let mut total = Partial::zeros(n);
         for p in &parts {
             total.add(p);
         }
         total.scale(self.weight);
+        // the sums over the unwhitened basis, whitened: `v ↦ W v`, `M ↦ W M W` (`W`
+        // symmetric)
+        total.whiten(&self.w);
         let Partial {
             energy,
             rho,
@@ -406,11 +416,12 @@ impl FaceForms {
     /// `R = ¼ (Re aᵀ(r Im B) − Im aᵀ(r Re B) + Im bᵀ(r Re A) − Re bᵀ(r Im A))`.
     pub fn first_order(&self, mu: &[f64]) -> (f64, Vec<f64>) {
         let n = self.n;
+        let lambda = self.coefficients(mu);
         let parts: Vec<(f64, f64, Vec<f64>)> = self
             .blocks()
             .par_iter()
             .map(|&(start, len)| {
-                let [a_r, a_i, b_r, b_i] = self.edge_values(mu, start, len);
+                let [a_r, a_i, b_r, b_i] = self.edge_values(&lambda, start, len);
                 let (mut energy, mut rho) = (0.0, 0.0);
                 let mut weighted = [
                     vec![0.0; len],
@@ -455,6 +466,7 @@ impl FaceForms {
             }
         }
         let c = self.weight;
+        let big_r = mat_vec(&self.w, &big_r);
         let gradient = (0..n).map(|i| 4.0 * c * (big_r[i] - rho * mu[i])).collect();
         (c * energy, gradient)
     }
@@ -466,12 +478,13 @@ impl FaceForms {
     /// `q = (α − γ)/2`, `r = β`; the sums are `Σ (p − s)²`, `Σ (p − s) q`, `Σ (p − s) r`,
     /// `Σ q²`, `Σ r²`, `Σ q r` (weighted). One `O(F n)` pass.
     pub fn great_circle(&self, mu: &[f64], w: &[f64]) -> [f64; 6] {
+        let (lm, lw) = (self.coefficients(mu), self.coefficients(w));
         let parts: Vec<[f64; 6]> = self
             .blocks()
             .par_iter()
             .map(|&(start, len)| {
-                let [mr, mi, nr, ni] = self.edge_values(mu, start, len);
-                let [wr, wi, vr, vi] = self.edge_values(w, start, len);
+                let [mr, mi, nr, ni] = self.edge_values(&lm, start, len);
+                let [wr, wi, vr, vi] = self.edge_values(&lw, start, len);
                 let mut c = [0.0; 6];
                 for r in 0..len {
                     let alpha = 0.5 * (mr[r] * ni[r] - mi[r] * nr[r]);
@@ -500,9 +513,9 @@ impl FaceForms {
         total.map(|x| x * self.weight)
     }
 
-    fn block_aggregates(&self, mu: &[f64], start: usize, len: usize) -> Partial {
+    fn block_aggregates(&self, lambda: &[f64], start: usize, len: usize) -> Partial {
         let n = self.n;
-        let [a_r, a_i, b_r, b_i] = self.edge_values(mu, start, len);
+        let [a_r, a_i, b_r, b_i] = self.edge_values(lambda, start, len);
         fn col(m: &Mat<f64>, k: usize, start: usize, len: usize) -> &[f64] {
             &m.col_as_slice(k)[start..start + len]
         }
@@ -551,6 +564,18 @@ impl FaceForms {
     }
 }
 
+/// The whitened edge values of a [`FaceForms`] (see [`FaceForms::whitened`]).
+pub struct Whitened([Mat<f64>; 4]);
+
+impl Whitened {
+    /// `Q̃_f[i][j] = ¼ (Im(conj(a_i) b_j) + Im(conj(a_j) b_i))`.
+    pub fn area_form_entry(&self, f: usize, i: usize, j: usize) -> f64 {
+        let [ar, ai, br, bi] = &self.0;
+        let m = |k: usize, l: usize| ar[(f, k)] * bi[(f, l)] - ai[(f, k)] * br[(f, l)];
+        0.25 * (m(i, j) + m(j, i))
+    }
+}
+
 /// One block's share of [`Aggregates`] (`x`: `Σ r_f (Re a Im bᵀ − Im a Re bᵀ)`).
 struct Partial {
     energy: f64,
@@ -587,6 +612,19 @@ impl Partial {
                 self.uu[(i, j)] *= c;
                 self.x[(i, j)] *= c;
             }
+        }
+    }
+
+    /// The sums of the unwhitened basis made those of the whitened one: `v ↦ W v` for
+    /// `R`, `au`; `M ↦ W M W` for `uu` and `x` (`W` symmetric, row-major).
+    fn whiten(&mut self, w: &[f64]) {
+        let n = self.big_r.len();
+        self.big_r = mat_vec(w, &self.big_r);
+        self.au = mat_vec(w, &self.au);
+        let wm = Mat::<f64>::from_fn(n, n, |i, j| w[i * n + j]);
+        for m in [&mut self.uu, &mut self.x] {
+            let t = &wm * &*m;
+            *m = &t * &wm;
         }
     }
 

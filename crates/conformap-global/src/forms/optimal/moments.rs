@@ -51,7 +51,10 @@ impl Moments {
     /// The moments of `faces`' area forms, streamed block by block from the edge values
     /// (no `n × n` form per face is ever stored).
     pub fn from_faces(faces: &FaceForms) -> Self {
-        Self::build(faces.n, &faces.s, |f, i, j| faces.area_form_entry(f, i, j))
+        let whitened = faces.whitened();
+        Self::build(faces.n, &faces.s, |f, i, j| {
+            whitened.area_form_entry(f, i, j)
+        })
     }
 
     /// The moments of the area forms `entry(f, i, j) = Q̃_f[i][j]` of the faces of shares

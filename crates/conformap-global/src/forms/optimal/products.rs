@@ -96,11 +96,12 @@ impl AreaProducts {
     /// that need a form per face build them — the emphasized area and the zero allocation).
     pub fn from_faces(faces: &FaceForms) -> Self {
         let n = faces.n;
+        let whitened = faces.whitened();
         let mut q = vec![0.0; faces.faces() * n * n];
         for (f, dst) in q.chunks_mut(n * n).enumerate() {
             for i in 0..n {
                 for j in i..n {
-                    let x = faces.area_form_entry(f, i, j);
+                    let x = whitened.area_form_entry(f, i, j);
                     dst[i * n + j] = x;
                     dst[j * n + i] = x;
                 }
