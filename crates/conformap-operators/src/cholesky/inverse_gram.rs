@@ -384,47 +384,41 @@ pub(super) fn solve_skipping_zeros(
 ) {
     let n = symbolic.nrows();
     let panels = Panels::new(symbolic, values);
-    // x row-major (`n × ncols`, a row's right-hand sides side by side): the panels'
-    // gathers and scatters move whole rows instead of one value per column
-    let c = ncols;
-    let mut x = vec![0.0; n * c];
+    let mut x = vec![0.0; n * ncols];
     let perm = symbolic.perm().map(|p| p.arrays());
-    for j in 0..c {
-        let src = &rhs[j * n..(j + 1) * n];
+    for j in 0..ncols {
+        let (src, dst) = (&rhs[j * n..(j + 1) * n], &mut x[j * n..(j + 1) * n]);
         match perm {
-            Some((fwd, _)) => {
-                for (i, &f) in fwd.iter().enumerate() {
-                    x[i * c + j] = src[f];
-                }
-            }
-            None => {
-                for (i, &v) in src.iter().enumerate() {
-                    x[i * c + j] = v;
-                }
-            }
+            Some((fwd, _)) => dst.iter_mut().zip(fwd).for_each(|(d, &f)| *d = src[f]),
+            None => dst.copy_from_slice(src),
         }
     }
     let mut tmp: Vec<f64> = Vec::new();
     for p in 0..panels.len() {
         let panel = panels.get(p);
         let (w, start, plen) = (panel.width, panel.start, panel.pattern.len());
-        if x[start * c..(start + w) * c].iter().all(|&v| v == 0.0) {
+        let live = (0..ncols).any(|j| {
+            x[j * n + start..j * n + start + w]
+                .iter()
+                .any(|&v| v != 0.0)
+        });
+        if !live {
             continue;
         }
         let (top, bottom) = panel.val.split_at_row(w);
         {
-            let xm = MatMut::from_row_major_slice_mut(&mut x, n, c);
+            let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
             solve_lower_triangular_in_place(top, xm.subrows_mut(start, w), Par::Seq);
         }
         if plen == 0 {
             continue;
         }
         tmp.clear();
-        tmp.resize(plen * c, 0.0);
+        tmp.resize(plen * ncols, 0.0);
         {
-            let xr = MatRef::from_row_major_slice(&x, n, c);
+            let xr = MatRef::from_column_major_slice(&x, n, ncols);
             matmul(
-                MatMut::from_row_major_slice_mut(&mut tmp, plen, c),
+                MatMut::from_column_major_slice_mut(&mut tmp, plen, ncols),
                 Accum::Replace,
                 bottom,
                 xr.subrows(start, w),
@@ -432,9 +426,10 @@ pub(super) fn solve_skipping_zeros(
                 Par::Seq,
             );
         }
-        for (&i, t) in panel.pattern.iter().zip(tmp.chunks_exact(c)) {
-            for (xi, ti) in x[i * c..(i + 1) * c].iter_mut().zip(t) {
-                *xi -= ti;
+        for j in 0..ncols {
+            let col = &mut x[j * n..(j + 1) * n];
+            for (&i, &t) in panel.pattern.iter().zip(&tmp[j * plen..(j + 1) * plen]) {
+                col[i] -= t;
             }
         }
     }
@@ -444,38 +439,35 @@ pub(super) fn solve_skipping_zeros(
         let (top, bottom) = panel.val.split_at_row(w);
         if plen > 0 {
             tmp.clear();
-            tmp.reserve(plen * c);
-            for &i in panel.pattern {
-                tmp.extend_from_slice(&x[i * c..(i + 1) * c]);
+            tmp.resize(plen * ncols, 0.0);
+            for j in 0..ncols {
+                let col = &x[j * n..(j + 1) * n];
+                for (t, &i) in tmp[j * plen..(j + 1) * plen].iter_mut().zip(panel.pattern) {
+                    *t = col[i];
+                }
             }
-            let xm = MatMut::from_row_major_slice_mut(&mut x, n, c);
+            let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
             matmul(
                 xm.subrows_mut(start, w),
                 Accum::Add,
                 bottom.transpose(),
-                MatRef::from_row_major_slice(&tmp, plen, c),
+                MatRef::from_column_major_slice(&tmp, plen, ncols),
                 -1.0,
                 Par::Seq,
             );
         }
-        let xm = MatMut::from_row_major_slice_mut(&mut x, n, c);
+        let xm = MatMut::from_column_major_slice_mut(&mut x, n, ncols);
         faer::linalg::triangular_solve::solve_upper_triangular_in_place(
             top.transpose(),
             xm.subrows_mut(start, w),
             Par::Seq,
         );
     }
-    for j in 0..c {
-        let dst = &mut rhs[j * n..(j + 1) * n];
+    for j in 0..ncols {
+        let (src, dst) = (&x[j * n..(j + 1) * n], &mut rhs[j * n..(j + 1) * n]);
         match perm {
-            Some((_, inv)) => dst
-                .iter_mut()
-                .zip(inv)
-                .for_each(|(d, &v)| *d = x[v * c + j]),
-            None => dst
-                .iter_mut()
-                .enumerate()
-                .for_each(|(i, d)| *d = x[i * c + j]),
+            Some((_, inv)) => dst.iter_mut().zip(inv).for_each(|(d, &v)| *d = src[v]),
+            None => dst.copy_from_slice(src),
         }
     }
 }
