@@ -44,16 +44,18 @@ pub const DIRECT_BLOCK_FACES: usize = 4096;
 /// faces), where each full step costs `F / 16384` coarse ones.
 pub const COARSE_FACES: usize = 16384;
 
-/// Faces of the coarsest level of a direct search: `4096`. A search with a coarse level
-/// ([`coarse_stride`]) descends from its starts on every `F / 4096`-th face first, then
+/// Faces of the coarsest level of a direct search: `2048`. A search with a coarse level
+/// ([`coarse_stride`]) descends from its starts on every `F / 2048`-th face first, then
 /// refines on the coarse level and polishes on all faces. Far from an optimum the
 /// saddle-free Newton takes 10–20 damped steps per start (measured on armadillo's slit
-/// surfaces at genus 12 and 15, issue 23), which need only the landscape's rough shape: on
-/// 4k faces each costs a quarter of a coarse step, and from the coarsest optimum the coarse
-/// level converges in 7–11 (docs/benchmarks.md, issue 23, second pass: armadillo's step 2
-/// the same optimum, step 1 a lower one, −0.16 %). Not used without a coarse level, so the searches of smaller meshes are
-/// unchanged.
-pub const COARSEST_FACES: usize = 4096;
+/// surfaces at genus 12 and 15, issue 23), which need only the landscape's rough shape, and
+/// each costs a Hessian on the sampled faces. Measured (docs/benchmarks.md, issue 23, third
+/// pass): 2048 faces find the same optimum at every step as 4096 did on armadillo, brain,
+/// kitten_53k and hand (energies equal to 7 digits), with the objective 25–140 ms shorter
+/// per step (armadillo's step 1: 377 → 240 ms; the coarse level then takes about as many
+/// steps as before). Not used without a coarse level, so the searches of smaller meshes
+/// are unchanged.
+pub const COARSEST_FACES: usize = 2048;
 
 /// Newton iterations per start assumed by [`use_moments`]: `40`. Measured at high genus
 /// (issue 23): 33 per start on armadillo's coarse level at genus 12, 48 on spot at genus 15
