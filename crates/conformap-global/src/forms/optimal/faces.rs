@@ -525,11 +525,11 @@ impl FaceForms {
             .map(|r| 0.5 * (a_r[r] * b_i[r] - a_i[r] * b_r[r]))
             .collect();
         let res: Vec<f64> = (0..len).map(|r| area[r] - self.s[start + r]).collect();
-        // u_f = ¼ (Re a Im B − Im a Re B + Re A Im b − Im A Re b); the rows of the two
-        // terms of X stacked: X = [Re a; Im a]ᵀ [r Im b; −r Re b]
+        // u_f = ¼ (Re a Im B − Im a Re B + Re A Im b − Im A Re b); the two terms of
+        // X = Re aᵀ (r Im b) − Im aᵀ (r Re b), the left factors read in place
         let mut u = Mat::<f64>::zeros(len, n);
-        let mut lhs = Mat::<f64>::zeros(2 * len, n);
-        let mut rhs = Mat::<f64>::zeros(2 * len, n);
+        let mut rhs_i = Mat::<f64>::zeros(len, n);
+        let mut rhs_r = Mat::<f64>::zeros(len, n);
         for k in 0..n {
             let (ar, ai, br, bi) = (
                 col(&self.ar, k, start, len),
@@ -540,13 +540,10 @@ impl FaceForms {
             for (r, uk) in u.col_as_slice_mut(k).iter_mut().enumerate() {
                 *uk = 0.25 * (ar[r] * b_i[r] - ai[r] * b_r[r] + a_r[r] * bi[r] - a_i[r] * br[r]);
             }
-            let l = lhs.col_as_slice_mut(k);
-            l[..len].copy_from_slice(ar);
-            l[len..].copy_from_slice(ai);
-            let q = rhs.col_as_slice_mut(k);
+            let (qi, qr) = (rhs_i.col_as_slice_mut(k), rhs_r.col_as_slice_mut(k));
             for r in 0..len {
-                q[r] = res[r] * bi[r];
-                q[len + r] = -res[r] * br[r];
+                qi[r] = res[r] * bi[r];
+                qr[r] = -res[r] * br[r];
             }
         }
         let mut p = Partial::zeros(n);
@@ -561,7 +558,12 @@ impl FaceForms {
             p.au[k] = c.iter().zip(&area).map(|(x, y)| x * y).sum();
         }
         gemm(&mut p.uu, u.transpose(), u.as_ref(), 1.0);
-        gemm(&mut p.x, lhs.transpose(), rhs.as_ref(), 1.0);
+        let (ar, ai) = (
+            self.ar.as_ref().subrows(start, len),
+            self.ai.as_ref().subrows(start, len),
+        );
+        gemm(&mut p.x, ar.transpose(), rhs_i.as_ref(), 1.0);
+        gemm(&mut p.x, ai.transpose(), rhs_r.as_ref(), 1.0);
         p
     }
 }
