@@ -78,15 +78,20 @@ pub const CIRCLE_SHARE: f64 = 0.5;
 
 /// A Newton step's Hessian is kept for the next step when the step was a full one (the
 /// line search's first trial accepted) and the gradient norm fell below this fraction of
-/// its value before the step: `0.25`. That is the local regime, where the Hessian barely
+/// its value before the step: `0.4`. That is the local regime, where the Hessian barely
 /// changes between iterates and the step with the kept one (a chord step) contracts the
 /// gradient nearly as fast as a fresh one; the next step that contracts less gets a fresh
 /// Hessian. Only for models whose gradient is cheap ([`EnergyModel::cheap_gradient`]: the
 /// direct sums, `O(F n)` against `O(F n²)` per Hessian): with the great-circle steps and the
 /// seeded levels, armadillo's searches take about half as many Hessians as Newton steps
 /// (docs/benchmarks.md, issue 23, second pass). Far from an optimum (damped steps) every step gets a
-/// fresh Hessian, as before, so a start descends into the same basin.
-pub const HESSIAN_REUSE_CONTRACTION: f64 = 0.25;
+/// fresh Hessian, as before, so a start descends into the same basin. Was `0.25`: the
+/// polish on all faces contracted the gradient ~0.3 per step with fresh Hessians and with
+/// the kept one alike (the energy's nonlinearity, not the Hessian, limits those steps), so
+/// 0.25 bought a full `O(F n²)` Hessian for nothing; with 0.4 the genus-15 searches take
+/// 5–12 % fewer Hessians and the same optima (energies equal to 8 digits on armadillo,
+/// brain, kitten_53k and hand; issue 23, third pass).
+pub const HESSIAN_REUSE_CONTRACTION: f64 = 0.4;
 
 /// The energy and, optionally, gradient and Hessian at a unit `μ`.
 pub struct Evaluation {
