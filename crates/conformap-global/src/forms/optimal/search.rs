@@ -171,7 +171,7 @@ pub fn random_directions(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
 /// armadillo and spot, docs/benchmarks.md, issue 23), while distinct local optima of a
 /// high-genus surface differ by 0.4 % and more; a coarse optimum 5 % worse than the best
 /// does not win after its polish, and each polish costs a few full `O(F n²)` Newton steps.
-/// The same window applies from the coarsest level (4k faces) to the coarse one.
+/// The same window applies from the coarsest level (2k faces) to the coarse one.
 pub const POLISH_WINDOW: f64 = 0.05;
 
 /// One level of the refinement: the optimum of each start on the level before (`None`: a
