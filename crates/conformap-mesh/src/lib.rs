@@ -42,6 +42,6 @@ pub use topology::{
     cut_graph, cut_mesh, homology_basis, CutMesh, EdgeIndex, Generator, HomologyBasis,
 };
 pub use trimesh::{
-    bbox_diagonal, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions, WellConditioned,
-    DEGENERATE_AREA_REL, NO_HALFEDGE,
+    bbox_diagonal, bounding_box, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions,
+    WellConditioned, DEGENERATE_AREA_REL, NO_HALFEDGE,
 };

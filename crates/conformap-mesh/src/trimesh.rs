@@ -401,8 +401,14 @@ impl WellConditioned {
     }
 }
 
-/// Length of the bounding-box diagonal of a point set (0 for an empty set).
-pub fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
+/// The axis-aligned bounding box `(lo, hi)` of a point set (`lo` = +∞ and `hi` = −∞ in
+/// every coordinate for an empty set).
+///
+/// ```
+/// let (lo, hi) = conformap_mesh::bounding_box(&[[0.0, 2.0, -1.0], [1.0, 0.0, 3.0]]);
+/// assert_eq!((lo, hi), ([0.0, 0.0, -1.0], [1.0, 2.0, 3.0]));
+/// ```
+pub fn bounding_box(positions: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in positions {
@@ -411,9 +417,15 @@ pub fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
             hi[k] = hi[k].max(p[k]);
         }
     }
+    (lo, hi)
+}
+
+/// Length of the bounding-box diagonal of a point set (0 for an empty set).
+pub fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
     if positions.is_empty() {
         return 0.0;
     }
+    let (lo, hi) = bounding_box(positions);
     ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
 }
 

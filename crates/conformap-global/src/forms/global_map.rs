@@ -314,9 +314,8 @@ pub(crate) fn global_map_ranked(
     let t = Instant::now();
     let conj = conjugation(&basis, &weights, &harmonic.forms, surface.num_faces())?;
     let lambda = conj.matrix(options.conjugate).to_vec();
-    let lambda_ref: &[f64] = &lambda;
     let ph = harmonic_periods(&basis, &harmonic.forms);
-    let periods = period_matrix(&ph, conj.matrix(options.conjugate), n);
+    let periods = period_matrix(&ph, &lambda, n);
     let plain_periods = period_matrix(&ph, &conj.gu_yau, n);
     let bilinear_residual = bilinear_residual(&periods, &conj.wedge, n);
     let bilinear_residual_gu_yau =
@@ -339,7 +338,7 @@ pub(crate) fn global_map_ranked(
             mesh: &surface,
             edges: &basis.edges,
             harmonic: &harmonic.forms,
-            lambda: lambda_ref,
+            lambda: &lambda,
             input_faces,
             input_vertices,
         },
@@ -355,7 +354,7 @@ pub(crate) fn global_map_ranked(
             .min_by(|&a, &b| form_uniformity[a].total_cmp(&form_uniformity[b]))
             .unwrap_or(0)
     });
-    let combined = combine(&harmonic.forms, lambda_ref, &objective.coefficients);
+    let combined = combine(&harmonic.forms, &lambda, &objective.coefficients);
     let phi = &combined;
     let area: f64 = form_face_areas(&basis.edges, phi, surface.num_faces())
         .iter()
@@ -455,8 +454,8 @@ fn form_face_areas(edges: &EdgeIndex, phi: &[Complex64], faces: usize) -> Vec<f6
         .collect()
 }
 
-/// `Σ_k c_k φ_k` (real `c`) per edge for the holomorphic basis `φ_k = ω_k + i Σ_j Λ_jk ω_j` of the real
-/// forms `h` and the conjugation `lambda` (row-major), without the basis: it is
+/// `Σ_k c_k φ_k` (real `c`) per edge for the holomorphic basis `φ_k = ω_k + i Σ_j Λ_jk ω_j`
+/// of the real forms `h` and the conjugation `lambda` (row-major), without the basis: it is
 /// `Σ_j ω_j d_j` with `d_j = c_j + i Σ_k Λ_jk c_k`.
 fn combine(h: &[Cochain], lambda: &[f64], c: &[f64]) -> ComplexCochain {
     let n = h.len();

@@ -60,14 +60,7 @@ impl Renumbered {
 /// The vertices sorted by the Morton code of their positions (21 bits per axis over the
 /// bounding box), ties by index: `order[k]` is the vertex at place `k`.
 fn morton_order(positions: &[[f64; 3]]) -> Vec<u32> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in positions {
-        for j in 0..3 {
-            lo[j] = lo[j].min(p[j]);
-            hi[j] = hi[j].max(p[j]);
-        }
-    }
+    let (lo, hi) = conformap_mesh::bounding_box(positions);
     let span = (0..3).map(|j| hi[j] - lo[j]).fold(0.0f64, f64::max);
     let scale = if span > 0.0 && span.is_finite() {
         ((1u64 << 21) - 1) as f64 / span

@@ -183,16 +183,18 @@ impl FaceForms {
         Self::finish(mesh, faces, [ar, ai, br, bi])
     }
 
-    /// [`Self::new`] for the holomorphic basis `a_k = h_k + i Σ_j Λ_jk h_j` of the real
-    /// harmonic forms `h` and the conjugation `Λ` (`lambda`, row-major `n × n`), without the
-    /// basis itself: the real parts are the harmonic forms' edge values and the imaginary
-    /// parts their product with `Λ` (`Im a = Re a · Λ`, one dense `faces × n` by `n × n`
-    /// product per edge), so the `edges × n` complex basis (125 MB on armadillo's
-    /// 15-slit double covering) need not exist first: [`crate::global_map`] builds it on
-    /// the other core meanwhile. Equal to [`Self::new`] on that basis up to rounding.
+    /// The per-face edge values of the holomorphic basis `a_k = h_k + i Σ_j Λ_jk h_j` of the
+    /// real harmonic forms `h` and the conjugation `Λ` (`lambda`, row-major `n × n`), without
+    /// the basis itself: the real parts are the harmonic forms' edge values and the
+    /// imaginary parts their product with `Λ` (`Im a = Re a · Λ`, one dense `faces × n` by
+    /// `n × n` product per edge), so the `edges × n` complex basis (125 MB on armadillo's
+    /// 15-slit double covering) need not exist at all ([`crate::GlobalMap::basis_forms`]
+    /// builds it on demand). The same values, up to rounding, as the test-only `new` from
+    /// that basis (tested on eightsim).
     ///
     /// # Errors
-    /// As [`Self::new`].
+    /// [`GlobalError::DegenerateFormBasis`] if the total area form `C` is not positive
+    /// definite.
     pub fn from_harmonic(
         mesh: &TriMesh,
         edges: &EdgeIndex,
