@@ -1,6 +1,6 @@
-//! Tall-and-skinny products over the edges or faces of a surface, block by block: the
-//! `n × n` Gram-type sums `Σ_r l_r r_rᵀ` of the wedge and Gram matrices and the area form,
-//! and the `rows × n` product of the harmonic forms with the conjugation matrix.
+//! Tall-and-skinny products over the faces of a surface, block by block: the `n × n`
+//! sums `Σ_r l_r r_rᵀ` of the area form, and the `rows × n` product of the harmonic forms
+//! with the conjugation matrix.
 //!
 //! The factors are never stored whole (`rows × n` values, 62 MB per matrix at genus 15 on
 //! armadillo's double covering): each block of [`PRODUCT_BLOCK_ROWS`] rows is filled,
@@ -11,7 +11,7 @@
 //! (measured on armadillo, docs/benchmarks.md, issue 23).
 
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatMut, Par};
+use faer::{Accum, Mat, Par};
 use rayon::prelude::*;
 
 /// Rows per block: `4096`. Two `4096 × n` factors (2 MB at `n = 30`) stay cache-sized.
@@ -23,40 +23,6 @@ pub(crate) fn blocks(rows: usize) -> Vec<(usize, usize)> {
         .step_by(PRODUCT_BLOCK_ROWS)
         .map(|s| (s, PRODUCT_BLOCK_ROWS.min(rows - s)))
         .collect()
-}
-
-/// `Σ_blocks Lᵀ R` (`n × n`) over `rows` rows, where `fill(start, len, L, R)` writes the
-/// block's rows `start..start + len` of both factors (`len × n` each, zeroed on entry).
-pub(crate) fn inner_products<F>(rows: usize, n: usize, fill: F) -> Mat<f64>
-where
-    F: Fn(usize, usize, MatMut<'_, f64>, MatMut<'_, f64>) + Sync,
-{
-    let parts: Vec<Mat<f64>> = blocks(rows)
-        .par_iter()
-        .map(|&(start, len)| {
-            let (mut l, mut r) = (Mat::<f64>::zeros(len, n), Mat::<f64>::zeros(len, n));
-            fill(start, len, l.as_mut(), r.as_mut());
-            let mut out = Mat::<f64>::zeros(n, n);
-            matmul(
-                out.as_mut(),
-                Accum::Replace,
-                l.transpose(),
-                r.as_ref(),
-                1.0,
-                Par::Seq,
-            );
-            out
-        })
-        .collect();
-    let mut total = Mat::<f64>::zeros(n, n);
-    for p in &parts {
-        for j in 0..n {
-            for i in 0..n {
-                total[(i, j)] += p[(i, j)];
-            }
-        }
-    }
-    total
 }
 
 /// `Lᵀ R` (`n × n`) for two `rows × n` column-major matrices, block by block of rows.

@@ -12,10 +12,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::forms::blocked::inner_products;
-use crate::forms::cohomology::Cochain;
+use rayon::prelude::*;
+
+use crate::forms::cohomology::{Cochain, SparseCochain};
 use crate::forms::dense::{frobenius, inverse, mat_mul, symmetric_function, transpose};
-use conformap_mesh::HomologyBasis;
 
 use crate::GlobalError;
 
@@ -77,75 +77,55 @@ impl Conjugation {
     }
 }
 
-/// `W_kj = ∫ ω_k ∧ ω_j` over the first `faces` faces and `H_kj = ∫ ω_k ∧ *ω_j` (row-major),
-/// as matrix products over the faces and edges (the face sums of `cohomology::wedge` and
-/// `cohomology::inner_product` for all pairs at once): with `A₁[f][k] = ω_k(v0 → v1)`,
-/// `A₂[f][k] = ω_k(v0 → v2)`, `W = ½ (A₁ᵀA₂ − A₂ᵀA₁)`; `H = Hᵀ diag(w) H` with the forms as
-/// the columns of `H`. Both are summed block by block (`blocked.rs`: the `faces × n` and
-/// `edges × n` factors are never stored whole). Exactly antisymmetric and symmetric (the
-/// upper triangles mirrored).
-pub fn wedge_and_gram(
-    basis: &HomologyBasis,
-    weights: &[f64],
-    h: &[Cochain],
-    faces: usize,
-) -> (Vec<f64>, Vec<f64>) {
+/// `H_ki = ∫ ω_k ∧ *h_i = Σ_e w_e ω_k(e) h_i(e)` (row-major, symmetrized), summed over the
+/// support of each cohomology basis form `closed[k]` (a few hundred edges, see
+/// [`SparseCochain`]) against the harmonic forms `h`.
+///
+/// This is the Gram matrix `∫ h_k ∧ *h_i` of the harmonic forms: `h_k = ω_k + d f_k` and
+/// `Σ_e w_e (d f_k)(e) h_i(e) = −Σ_v f_k(v) (δ h_i)(v)`, which the harmonic projection makes
+/// zero (to its codifferential residual, `GlobalMap::harmonic_residual`). The two triangles
+/// differ by that residual; their mean is returned.
+pub fn gram_matrix(weights: &[f64], closed: &[SparseCochain], h: &[Cochain]) -> Vec<f64> {
     let n = h.len();
-    let e = &basis.edges;
-    let x = inner_products(faces, n, |start, len, mut a1, mut a2| {
-        // each face's two edges and orientations, looked up once for all forms
-        let at: Vec<[(usize, f64); 2]> = (start..start + len)
-            .map(|f| [3 * f, 3 * f + 2].map(|he| (e.edge_of[he] as usize, e.sign(he))))
-            .collect();
-        for (k, form) in h.iter().enumerate() {
-            for (r, &[(e1, s1), (e2, s2)]) in at.iter().enumerate() {
-                a1[(r, k)] = s1 * form[e1];
-                a2[(r, k)] = -(s2 * form[e2]);
-            }
-        }
-    });
-    let rows = h.first().map_or(0, Vec::len);
-    let gm = inner_products(rows, n, |start, len, mut weighted, mut plain| {
-        for (k, form) in h.iter().enumerate() {
-            for (r, (&value, &w)) in form[start..start + len]
-                .iter()
-                .zip(&weights[start..start + len])
-                .enumerate()
-            {
-                weighted[(r, k)] = w * value;
-                plain[(r, k)] = value;
-            }
-        }
-    });
-    let mut w = vec![0.0; n * n];
+    let rows: Vec<Vec<f64>> = closed
+        .par_iter()
+        .map(|support| {
+            h.iter()
+                .map(|form| {
+                    support
+                        .iter()
+                        .map(|&(e, x)| weights[e as usize] * x * form[e as usize])
+                        .sum()
+                })
+                .collect()
+        })
+        .collect();
     let mut g = vec![0.0; n * n];
     for i in 0..n {
         for j in i..n {
-            if j > i {
-                let v = 0.5 * (x[(i, j)] - x[(j, i)]);
-                w[i * n + j] = v;
-                w[j * n + i] = -v;
-            }
-            g[i * n + j] = gm[(i, j)];
-            g[j * n + i] = gm[(i, j)];
+            let v = 0.5 * (rows[i][j] + rows[j][i]);
+            g[i * n + j] = v;
+            g[j * n + i] = v;
         }
     }
-    (w, g)
+    g
 }
 
-/// Solves the wedge-product system for the harmonic forms `h` (cotangent `weights` per
-/// edge) and projects it onto the nearest complex structure.
+/// Solves the wedge-product system `W Λ = H` of the harmonic forms `h` — the wedge matrix
+/// `w` of their cohomology classes ([`crate::forms::cohomology::wedge_matrix`]), the Gram
+/// matrix from the sparse basis `closed` they project ([`gram_matrix`], cotangent `weights`
+/// per edge) — and projects it onto the nearest complex structure.
 ///
 /// # Errors
 /// [`GlobalError::DegenerateFormBasis`] if `W` or `H` is numerically singular.
 pub fn conjugation(
-    basis: &HomologyBasis,
+    w: Vec<f64>,
     weights: &[f64],
+    closed: &[SparseCochain],
     h: &[Cochain],
-    faces: usize,
 ) -> Result<Conjugation, GlobalError> {
     let n = h.len();
-    let (w, g) = wedge_and_gram(basis, weights, h, faces);
+    let g = gram_matrix(weights, closed, h);
     let w_inv = inverse(&w, n).ok_or(GlobalError::DegenerateFormBasis {
         reason: "the wedge matrix of the harmonic basis is singular",
     })?;

@@ -12,7 +12,7 @@ use conformap_operators::{
 };
 use rayon::prelude::*;
 
-use crate::forms::cohomology::Cochain;
+use crate::forms::cohomology::{Cochain, SparseCochain};
 use crate::GlobalError;
 
 /// What the harmonic projection did and cost.
@@ -42,12 +42,18 @@ fn edge_ends(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<(u32, u32)> {
         .collect()
 }
 
-/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)`, with `ends` each edge's reference
-/// half-edge's vertices ([`edge_ends`]).
-fn divergence(vertices: usize, ends: &[(u32, u32)], weights: &[f64], w: &[f64]) -> Vec<f64> {
+/// `(div ω)_v = Σ_{edges v → u} w_vu ω(v → u)` of a form given by its nonzero values, with
+/// `ends` each edge's reference half-edge's vertices ([`edge_ends`]).
+fn divergence(
+    vertices: usize,
+    ends: &[(u32, u32)],
+    weights: &[f64],
+    support: &[(u32, f64)],
+) -> Vec<f64> {
     let mut div = vec![0.0; vertices];
-    for (e, &(a, b)) in ends.iter().enumerate() {
-        let flux = weights[e] * w[e];
+    for &(e, x) in support {
+        let (a, b) = ends[e as usize];
+        let flux = weights[e as usize] * x;
         div[a as usize] += flux;
         div[b as usize] -= flux;
     }
@@ -221,30 +227,28 @@ impl HarmonicFactor {
         }
     }
 
-    /// The potentials `f_i` with `L f_i = d_i` (one pinned value, or a constant, free).
-    fn potentials(&self, divs: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    /// Solves `L f_i = div_i` for every divergence of `divs` (one blocked solve per
+    /// factorization): the solution columns, read per form by [`Self::potential`].
+    fn solve(&self, divs: &[Vec<f64>]) -> Solution {
         let k = divs.len();
         match &self.kind {
             Kind::Whole(w) => {
                 let (part, chol, _) = &**w;
-                let ni = part.interior.len();
-                let mut rhs = Vec::with_capacity(ni * k);
+                let mut rhs = Vec::with_capacity(part.interior.len() * k);
                 for d in divs {
                     rhs.extend(part.interior.iter().map(|&v| d[v as usize]));
                 }
                 chol.solve_in_place(&mut rhs, k);
-                (0..k)
-                    .map(|i| part.assemble(&rhs[i * ni..(i + 1) * ni], &[0.0]))
-                    .collect()
+                Solution::Whole(rhs)
             }
             Kind::Mirrored(h) => {
                 let MirroredHalves {
                     mirror,
-                    copy_vertices,
                     neumann,
                     dirichlet,
                     chol_n,
                     chol_d,
+                    ..
                 } = &**h;
                 let on_boundary = |v: usize| mirror[v] as usize == v;
                 let (nn, nd) = (neumann.interior.len(), dirichlet.interior.len());
@@ -268,30 +272,59 @@ impl HarmonicFactor {
                     || chol_n.solve_in_place(&mut rn, k),
                     || chol_d.solve_in_place(&mut rd, k),
                 );
-                let pinned = vec![0.0; neumann.boundary.len()];
-                let fixed = vec![0.0; dirichlet.boundary.len()];
-                (0..k)
-                    .map(|i| {
-                        let sym = neumann.assemble(&rn[i * nn..(i + 1) * nn], &pinned);
-                        let anti = dirichlet.assemble(&rd[i * nd..(i + 1) * nd], &fixed);
-                        let mut f = vec![0.0; mirror.len()];
-                        for v in 0..*copy_vertices {
-                            f[v] = sym[v] + anti[v];
-                            let w = mirror[v] as usize;
-                            if w != v {
-                                f[w] = sym[v] - anti[v];
-                            }
-                        }
-                        f
-                    })
-                    .collect()
+                Solution::Mirrored(rn, rd)
             }
         }
     }
 
+    /// The potential `f_i` of form `i` on every vertex of the surface, from the solution
+    /// columns (pinned and mirror-fixed values 0): the sum of the symmetric (Neumann) and
+    /// antisymmetric (Dirichlet) parts on the first copy, their difference on the second.
+    fn potential(&self, solution: &Solution, i: usize) -> Vec<f64> {
+        match (&self.kind, solution) {
+            (Kind::Whole(w), Solution::Whole(x)) => {
+                let part = &w.0;
+                let ni = part.interior.len();
+                part.assemble(&x[i * ni..(i + 1) * ni], &[0.0])
+            }
+            (Kind::Mirrored(h), Solution::Mirrored(rn, rd)) => {
+                let MirroredHalves {
+                    mirror,
+                    copy_vertices,
+                    neumann,
+                    dirichlet,
+                    ..
+                } = &**h;
+                let (nn, nd) = (neumann.interior.len(), dirichlet.interior.len());
+                let (sym, anti) = (&rn[i * nn..(i + 1) * nn], &rd[i * nd..(i + 1) * nd]);
+                let mut f = vec![0.0; mirror.len()];
+                for v in 0..*copy_vertices {
+                    let s = if neumann.is_interior[v] {
+                        sym[neumann.local[v] as usize]
+                    } else {
+                        0.0
+                    };
+                    let a = if dirichlet.is_interior[v] {
+                        anti[dirichlet.local[v] as usize]
+                    } else {
+                        0.0
+                    };
+                    f[v] = s + a;
+                    let w = mirror[v] as usize;
+                    if w != v {
+                        f[w] = s - a;
+                    }
+                }
+                f
+            }
+            _ => unreachable!("a solution comes from its own factorization"),
+        }
+    }
+
     /// Projects each closed form of `closed` onto its harmonic representative, in place (same
-    /// cohomology class: `h − ω = d f` is exact, so every period is kept). `basis` must be a
-    /// homology basis of the factored mesh, rooted at the pinned vertex for a whole
+    /// cohomology class: `h − ω = d f` is exact, so every period is kept). `support` holds
+    /// the same forms' nonzero values (their divergences are sums over them). `basis` must be
+    /// a homology basis of the factored mesh, rooted at the pinned vertex for a whole
     /// factorization ([`Self::fits_root`]).
     ///
     /// # Errors
@@ -302,53 +335,69 @@ impl HarmonicFactor {
         basis: &HomologyBasis,
         weights: &[f64],
         mut closed: Vec<Cochain>,
+        support: &[SparseCochain],
     ) -> Result<HarmonicSolve, GlobalError> {
         let t1 = Instant::now();
         let ends = edge_ends(mesh, basis);
-        let divs: Vec<Vec<f64>> = closed
+        let nv = mesh.num_vertices();
+        let divs: Vec<Vec<f64>> = support
             .par_iter()
-            .map(|w| divergence(mesh.num_vertices(), &ends, weights, w))
+            .map(|w| divergence(nv, &ends, weights, w))
             .collect();
-        let potentials = self.potentials(&divs);
-        if let Some(v) = potentials
-            .iter()
-            .find_map(|f| f.iter().position(|x| !x.is_finite()))
-        {
-            return Err(GlobalError::NonFinite {
-                vertex: v,
-                stage: "harmonic projection",
-            });
-        }
-        // the forms are independent: one per thread
-        // h = ω + d f, in place (the closed forms are not needed after)
-        let residuals: Vec<f64> = closed
+        let solution = self.solve(&divs);
+        // the forms are independent: one per thread, each with its own potential.
+        // h = ω + d f in place (the closed forms are not needed after), and the
+        // divergence of h on the same pass: the relative residual
+        let residuals: Vec<Result<f64, usize>> = closed
             .par_iter_mut()
-            .zip(&potentials)
             .zip(&divs)
-            .map(|((h, f), div)| {
-                for (x, &(a, b)) in h.iter_mut().zip(&ends) {
+            .enumerate()
+            .map(|(i, (h, div))| {
+                let f = self.potential(&solution, i);
+                if let Some(v) = f.iter().position(|x| !x.is_finite()) {
+                    return Err(v);
+                }
+                // the divergence of h, as `divergence` sums it
+                let mut after = vec![0.0; nv];
+                for ((x, &(a, b)), &w) in h.iter_mut().zip(&ends).zip(weights) {
                     *x = (*x + f[b as usize]) - f[a as usize];
+                    let flux = w * *x;
+                    after[a as usize] += flux;
+                    after[b as usize] -= flux;
                 }
                 let scale = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                let after = divergence(mesh.num_vertices(), &ends, weights, h);
                 let res = after.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                if scale > 0.0 {
-                    res / scale
-                } else {
-                    0.0
-                }
+                Ok(if scale > 0.0 { res / scale } else { 0.0 })
             })
             .collect();
-        let codifferential_residual = residuals.iter().fold(0.0f64, |m, r| m.max(*r));
-        let forms = closed;
+        let mut codifferential_residual = 0.0f64;
+        for r in residuals {
+            match r {
+                Ok(r) => codifferential_residual = codifferential_residual.max(r),
+                Err(vertex) => {
+                    return Err(GlobalError::NonFinite {
+                        vertex,
+                        stage: "harmonic projection",
+                    })
+                }
+            }
+        }
         Ok(HarmonicSolve {
-            forms,
+            forms: closed,
             codifferential_residual,
             factor: self.stats(),
             assemble_ms: self.assemble_ms,
             solve_ms: ms(t1),
         })
     }
+}
+
+/// The solution columns of [`HarmonicFactor::solve`], form by form (column-major).
+enum Solution {
+    /// One system: `interior × k`.
+    Whole(Vec<f64>),
+    /// The Neumann and Dirichlet systems of one copy.
+    Mirrored(Vec<f64>, Vec<f64>),
 }
 
 /// Milliseconds since `t`.

@@ -144,27 +144,61 @@ fn genus_zero_is_refused_naming_the_command() {
     assert!(err.to_string().contains("form"));
 }
 
-#[test]
-fn wedge_and_gram_products_match_the_pairwise_face_sums() {
-    use crate::forms::cohomology::{cohomology_basis, edge_weights, inner_product, wedge};
-    use crate::forms::conjugate::wedge_and_gram;
-    let mesh = read_plain_obj(&fixture_path("eightsim.obj")).expect("eightsim");
-    let basis = conformap_mesh::homology_basis(&mesh, None).expect("basis");
-    let (closed, _) = cohomology_basis(&mesh, &basis);
-    let weights = edge_weights(&mesh, &basis);
-    let (w, g) = wedge_and_gram(&basis, &weights, &closed, mesh.num_faces());
-    let n = closed.len();
-    assert_eq!(n, 4);
+/// The sparse wedge and Gram matrices (from the cohomology basis) against the pairwise face
+/// and edge sums of the harmonic forms they stand for, on `mesh` (closed) or its double
+/// covering (`mirror`).
+fn check_sparse_products(mesh: &TriMesh, mirror: Option<(Vec<u32>, usize)>) {
+    use crate::forms::cohomology::{
+        cohomology_basis, edge_weights, inner_product, sparse, wedge, wedge_matrix,
+    };
+    use crate::forms::conjugate::gram_matrix;
+    use crate::forms::harmonic::HarmonicFactor;
+    use conformap_operators::CholeskyOptions;
+    let basis = conformap_mesh::homology_basis(mesh, None).expect("basis");
+    let (closed, _) = cohomology_basis(mesh, &basis);
+    let support: Vec<_> = closed.iter().map(|w| sparse(w)).collect();
+    let edges = basis.edges.len();
+    assert!(support.iter().all(|s| s.len() < edges / 4), "sparse basis");
+    let w = wedge_matrix(mesh, &basis.edges, &closed, &support);
+    let weights = edge_weights(mesh, &basis);
+    let options = CholeskyOptions::default();
+    let factor = match &mirror {
+        Some((m, copy)) => HarmonicFactor::mirrored(mesh, m, *copy, &options, None),
+        None => HarmonicFactor::new(mesh, basis.root, &options),
+    }
+    .expect("factor");
+    let h = factor
+        .project(mesh, &basis, &weights, closed, &support)
+        .expect("project")
+        .forms;
+    let g = gram_matrix(&weights, &support, &h);
+    let n = h.len();
+    let scale = (0..n).map(|i| g[i * n + i]).fold(0.0f64, f64::max);
     for i in 0..n {
         for j in 0..n {
-            let ww = wedge(&basis, 0..mesh.num_faces(), &closed[i], &closed[j]);
-            let gg = inner_product(&weights, &closed[i], &closed[j]);
+            let ww = wedge(&basis, 0..mesh.num_faces(), &h[i], &h[j]);
+            let gg = inner_product(&weights, &h[i], &h[j]);
+            // the wedge of the basis is the intersection form: integers, exactly
+            assert_eq!(w[i * n + j], w[i * n + j].round(), "W[{i},{j}]");
             assert!(
-                (w[i * n + j] - ww).abs() < 1e-12,
+                (w[i * n + j] - ww).abs() < 1e-10,
                 "W[{i},{j}] {} vs {ww}",
                 w[i * n + j]
             );
-            assert!((g[i * n + j] - gg).abs() < 1e-12 * gg.abs().max(1.0));
+            assert!(
+                (g[i * n + j] - gg).abs() < 1e-10 * scale,
+                "H[{i},{j}] {} vs {gg}",
+                g[i * n + j]
+            );
         }
     }
+}
+
+#[test]
+fn sparse_wedge_and_gram_match_the_harmonic_forms_pairwise_sums() {
+    let eightsim = read_plain_obj(&fixture_path("eightsim.obj")).expect("eightsim");
+    check_sparse_products(&eightsim, None);
+    let halftunnel = read_plain_obj(&fixture_path("halftunnel.obj")).expect("halftunnel");
+    let dc = crate::double_cover::double_cover_surface(&halftunnel).expect("covering");
+    check_sparse_products(&dc.mesh, Some((dc.mirror, dc.split_vertices)));
 }
