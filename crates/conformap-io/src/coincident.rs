@@ -100,7 +100,7 @@ pub fn coincident_vertices(positions: &[[f64; 3]]) -> usize {
     positions.len() - classes(positions, None).1.len()
 }
 
-/// Welds coincident vertices (the rule of the [module](self)): one vertex per class, in
+/// Welds coincident vertices (positions with the same bits, −0.0 = 0.0): one vertex per class, in
 /// order of first occurrence, and the faces renumbered.
 ///
 /// # Examples

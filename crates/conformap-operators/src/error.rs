@@ -20,7 +20,7 @@ pub enum OperatorError {
         /// Columns.
         cols: usize,
     },
-    /// A matrix given to [`SymbolicAnalysis::factor`] does not have the pattern analysed.
+    /// A matrix given to [`crate::SymbolicAnalysis::factor`] does not have the pattern analysed.
     #[error("the matrix does not have the sparsity pattern that was analysed")]
     PatternMismatch,
     /// A custom ordering is not a permutation of `0..n`.
@@ -30,7 +30,7 @@ pub enum OperatorError {
         n: usize,
     },
     /// The intrinsic Delaunay flip loop ran out of its flip budget
-    /// ([`IntrinsicOptions::max_flips_per_edge`] per interior edge): a numerical cycle of
+    /// ([`crate::IntrinsicOptions::max_flips_per_edge`] per interior edge): a numerical cycle of
     /// flips. Fix: raise the budget or the Delaunay tolerance, or use the plain cotangent
     /// Laplacian.
     #[error("intrinsic Delaunay flips did not finish: {flips} flips reached the limit {limit}")]

@@ -59,7 +59,7 @@ pub trait Row: Fields + Clone {
             .join(" ")
     }
 
-    /// Parses [`Self::to_line`]: `None` unless the line is exactly [`Self::FIELDS`] numbers.
+    /// Parses [`Self::to_line`]: `None` unless the line is exactly [`Fields::FIELDS`] numbers.
     fn from_line(line: &str) -> Option<Self> {
         let v: Vec<f64> = line
             .split_whitespace()

@@ -32,7 +32,7 @@ pub enum CcemStart {
     /// complement `A` that CCEM forms anyway: its right-hand side rides along in the pass
     /// that forms `A`, then one dense solve with `A` (`n_B³/3` flops) — no second
     /// factorization and no CEM iterations. (With the implicit `A` it costs the second
-    /// factorization of [`crate::angenent_boundary`].)
+    /// factorization of [`crate::initial::angenent_boundary`].)
     Angenent,
     /// The discrete harmonic measure of the boundary seen from an interior vertex near the
     /// centre (the boundary of the conformal map sending that vertex to 0, in the
