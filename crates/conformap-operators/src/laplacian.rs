@@ -5,7 +5,7 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use sprs::CsMat;
 
-use crate::geometry::corner_cotangents;
+use crate::geometry::{face_points, triangle_cotangents};
 
 /// Assembles the cotangent Laplacian of CEM Eq. 6 as a symmetric CSC matrix (full storage,
 /// sorted row indices):
@@ -22,10 +22,47 @@ use crate::geometry::corner_cotangents;
 /// counting sort), then each column sorted by row; the diagonal is summed face by face. Scattering into a sorted pattern by binary search, as before, cost
 /// several cache misses per entry: 4–5× slower on 53k-vertex meshes.
 pub fn cotan_laplacian(mesh: &TriMesh) -> CsMat<f64> {
-    let n = mesh.num_vertices();
-    let cots = corner_cotangents(mesh);
-    let opposite = mesh.opposite_halfedges();
-    let faces = mesh.faces();
+    cotan_laplacian_part(mesh, mesh.num_faces(), mesh.num_vertices())
+}
+
+/// The cotangent Laplacian ([`cotan_laplacian`]) of the first `faces` faces of `mesh` alone,
+/// which must use only its first `vertices` vertices: an edge whose other face lies beyond
+/// `faces` counts as a boundary edge. One copy of a symmetric double covering is its first
+/// half (`conformap-global` factors that copy's Neumann and Dirichlet problems), built
+/// without assembling the covering's whole matrix. `cotan_laplacian_part(mesh,
+/// mesh.num_faces(), mesh.num_vertices())` is [`cotan_laplacian`], bit for bit.
+///
+/// # Panics
+/// If `faces` exceeds the mesh's faces or a face among them uses a vertex `≥ vertices`.
+///
+/// # Examples
+/// ```
+/// use conformap_mesh::TriMesh;
+/// use conformap_operators::{cotan_laplacian, cotan_laplacian_part};
+/// let p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+/// let square = TriMesh::try_new(p.clone(), vec![[0, 1, 2], [0, 2, 3]])?;
+/// assert_eq!(cotan_laplacian_part(&square, 2, 4), cotan_laplacian(&square));
+/// // the first face alone is the Laplacian of that triangle as a mesh of its own
+/// let triangle = TriMesh::try_new(p[..3].to_vec(), vec![[0, 1, 2]])?;
+/// assert_eq!(cotan_laplacian_part(&square, 1, 3), cotan_laplacian(&triangle));
+/// # Ok::<(), conformap_mesh::MeshError>(())
+/// ```
+pub fn cotan_laplacian_part(mesh: &TriMesh, faces: usize, vertices: usize) -> CsMat<f64> {
+    let n = vertices;
+    let all = mesh.faces();
+    assert!(faces <= all.len(), "{faces} faces of {}", all.len());
+    let faces = &all[..faces];
+    assert!(
+        faces.iter().flatten().all(|&v| (v as usize) < n),
+        "a face uses a vertex beyond {n}"
+    );
+    let cots: Vec<[f64; 3]> = (0..faces.len())
+        .into_par_iter()
+        .with_min_len(EDGE_BLOCK / 3)
+        .map(|f| triangle_cotangents(face_points(mesh, f)))
+        .collect();
+    let opposite = &mesh.opposite_halfedges()[..3 * faces.len()];
+    let inside = 3 * faces.len() as u32;
     // half-edge h = 3f + k runs faces[f][k] → faces[f][k+1]; its opposite corner is k + 2
     let half = |h: usize| 0.5 * cots[h / 3][(h % 3 + 2) % 3];
     // (a, b, w) once per undirected edge: a boundary half-edge, or the smaller of a pair
@@ -35,6 +72,8 @@ pub fn cotan_laplacian(mesh: &TriMesh) -> CsMat<f64> {
         .flat_map_iter(|(block, opp)| {
             opp.iter().enumerate().filter_map(move |(i, &o)| {
                 let h = block * EDGE_BLOCK + i;
+                // a half-edge whose opposite lies beyond the faces taken is a boundary
+                let o = if o < inside { o } else { NO_HALFEDGE };
                 if o != NO_HALFEDGE && o < h as u32 {
                     return None;
                 }

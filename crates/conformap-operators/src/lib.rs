@@ -47,7 +47,8 @@ pub use intrinsic::{
     IntrinsicStats, IntrinsicTriangulation, INTRINSIC_DELAUNAY_TOL, INTRINSIC_MAX_FLIPS_PER_EDGE,
 };
 pub use laplacian::{
-    cotan_laplacian, interior_pattern, mul_complex, quadratic_form, LaplacianBlocks, Partition,
+    cotan_laplacian, cotan_laplacian_part, interior_pattern, mul_complex, quadratic_form,
+    LaplacianBlocks, Partition,
 };
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;

@@ -5,7 +5,7 @@
 //! edge in its reference orientation). A closed form is the differential of a linear function
 //! on each face, so both integrals are exact face sums.
 
-use std::collections::VecDeque;
+use std::collections::{BinaryHeap, HashMap, VecDeque};
 
 use conformap_mesh::{EdgeIndex, HomologyBasis, TriMesh, NO_HALFEDGE};
 use conformap_operators::corner_cotangents;
@@ -20,19 +20,27 @@ pub type Cochain = Vec<f64>;
 /// along generator loop `j` (the loop crosses only tree edges and `e_j`), so the basis is
 /// dual to the homology basis and no `ω_i` is exact.
 ///
-/// Returns the forms and the largest `|dω|` left on the root face of the dual tree (which
-/// closedness on all other faces determines; rounding level on a closed surface).
-pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>, f64) {
+/// Only the dual-tree ancestors of the two faces beside `e_i` can get a nonzero value (a
+/// face's parent edge carries the sum over its other edges), and the two paths cancel
+/// where they meet: `ω_i` is `±1` on the dual path between those faces and zero elsewhere.
+/// Each form is peeled along those paths alone (faces taken deepest first, so a face's
+/// children come before it), `O(path)` per form after one breadth-first search of the
+/// dual tree, instead of a pass over every face per form.
+///
+/// Returns the forms by their nonzero values ([`SparseCochain`]) and the largest `|dω|` left
+/// on the root face of the dual tree (which closedness on all other faces determines; 0 on a
+/// closed surface: the values are integers).
+pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<SparseCochain>, f64) {
     let edges = &basis.edges;
     let opp = mesh.opposite_halfedges();
     let nf = mesh.num_faces();
-    // BFS over the dual tree from face 0: the order and the half-edge of each face that
-    // crosses to its parent
+    // BFS over the dual tree from face 0: the order, each face's place in it and the
+    // half-edge of each face that crosses to its parent
     let mut parent_h = vec![u32::MAX; nf];
-    let mut seen = vec![false; nf];
+    let mut place = vec![u32::MAX; nf];
     let mut order = Vec::with_capacity(nf);
     let mut queue = VecDeque::from([0usize]);
-    seen[0] = true;
+    place[0] = 0;
     while let Some(f) = queue.pop_front() {
         order.push(f);
         for k in 0..3 {
@@ -42,49 +50,62 @@ pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>,
             }
             let o = opp[h] as usize;
             let g = o / 3;
-            if !seen[g] {
-                seen[g] = true;
+            if place[g] == u32::MAX {
+                place[g] = (order.len() + queue.len()) as u32;
                 parent_h[g] = o as u32;
                 queue.push_back(g);
             }
         }
     }
-    // the peeling schedule: per face, from the leaves of the dual tree to its root, the
-    // edge set by closedness (with its sign) and the face's two other edges
-    let step = |h: usize| (edges.edge_of[h], edges.sign(h));
-    let schedule: Vec<[(u32, f64); 3]> = order
-        .iter()
-        .skip(1)
-        .rev()
-        .map(|&f| {
-            let ph = parent_h[f] as usize;
-            let mut others = (3 * f..3 * f + 3).filter(|&h| h != ph).map(step);
-            let first = others.next().unwrap_or((0, 0.0));
-            let second = others.next().unwrap_or((0, 0.0));
-            [step(ph), first, second]
-        })
-        .collect();
-    // one form per thread, form-major: each pass reads the schedule in order and touches
-    // one `edges`-long vector, which stays in cache (the edge-major `edges × n` array of
-    // all forms at once was read at random, a cache miss per row)
-    let forms: Vec<Cochain> = basis
+    let step = |h: usize| (edges.edge_of[h] as usize, edges.sign(h));
+    let forms: Vec<SparseCochain> = basis
         .generators
         .par_iter()
         .map(|gen| {
-            let mut w = vec![0.0; edges.len()];
-            w[gen.edge as usize] = 1.0;
-            for &[(e, sign), (e1, s1), (e2, s2)] in &schedule {
+            let mut w: HashMap<usize, f64> = HashMap::from([(gen.edge as usize, 1.0)]);
+            let h = edges.halfedge[gen.edge as usize] as usize;
+            // faces by their place in the BFS order, deepest (latest) first
+            let mut active: BinaryHeap<u32> = [h, opp[h] as usize]
+                .into_iter()
+                .filter(|&x| x != NO_HALFEDGE as usize)
+                .map(|x| place[x / 3])
+                .collect();
+            while let Some(p) = active.pop() {
+                while active.peek() == Some(&p) {
+                    active.pop();
+                }
+                let f = order[p as usize];
+                if p == 0 {
+                    continue; // the root: no parent edge
+                }
+                let ph = parent_h[f] as usize;
                 // sign(ph) · w[e] + others = 0
-                let others = 0.0 + s1 * w[e1 as usize] + s2 * w[e2 as usize];
-                w[e as usize] = -others * sign;
+                let mut others = 0.0;
+                for x in (3 * f..3 * f + 3).filter(|&x| x != ph) {
+                    let (e, s) = step(x);
+                    others += s * w.get(&e).copied().unwrap_or(0.0);
+                }
+                let (e, sign) = step(ph);
+                let value = -others * sign;
+                if value != 0.0 {
+                    w.insert(e, value);
+                    active.push(place[opp[ph] as usize / 3]);
+                }
             }
-            w
+            let mut support: SparseCochain = w.into_iter().map(|(e, x)| (e as u32, x)).collect();
+            support.sort_unstable_by_key(|&(e, _)| e);
+            support
         })
         .collect();
     let mut root_residual = 0.0f64;
     for w in &forms {
         let root: f64 = (0..3)
-            .map(|h| edges.sign(h) * w[edges.edge_of[h] as usize])
+            .map(|h| {
+                let (e, s) = step(h);
+                s * w
+                    .binary_search_by_key(&(e as u32), |&(e, _)| e)
+                    .map_or(0.0, |i| w[i].1)
+            })
             .sum();
         root_residual = root_residual.max(root.abs());
     }
@@ -93,23 +114,14 @@ pub fn cohomology_basis(mesh: &TriMesh, basis: &HomologyBasis) -> (Vec<Cochain>,
 
 /// A closed form's nonzero values, `(edge, value)` in edge order.
 ///
-/// The basis forms of [`cohomology_basis`] are sparse: zero on the tree, `±1` along the two
-/// dual paths from their generator edge to the dual root (≤ 1200 of 260 000 edges on
-/// armadillo's 15-slit covering), so the bilinear forms of the basis are sums over a few
-/// hundred faces ([`wedge_matrix`], `conjugate::gram_matrix`).
+/// The basis forms of [`cohomology_basis`] are sparse: `±1` on the dual path between the two
+/// faces beside their generator edge (≤ 1200 of 260 000 edges on armadillo's 15-slit
+/// covering), so the bilinear forms of the basis are sums over a few hundred faces
+/// ([`wedge_matrix`], `conjugate::gram_matrix`).
 pub type SparseCochain = Vec<(u32, f64)>;
 
-/// The nonzero values of `form`.
-pub fn sparse(form: &[f64]) -> SparseCochain {
-    form.iter()
-        .enumerate()
-        .filter(|(_, x)| **x != 0.0)
-        .map(|(e, &x)| (e as u32, x))
-        .collect()
-}
-
-/// `W_kj = ∫ ω_k ∧ ω_j` of the cohomology basis (row-major, exactly antisymmetric), summed
-/// over the faces next to each form's support (`sparse[k]`, with `closed[j]` read densely).
+/// `W_kj = ∫ ω_k ∧ ω_j` of the cohomology basis `forms` (row-major, exactly antisymmetric),
+/// summed over the faces beside their supports.
 ///
 /// On a closed surface this is also the wedge matrix of the harmonic forms `h = ω + d f`:
 /// the face value `½(a₁b₂ − a₂b₁)` of `∫ d f ∧ β` equals `½ Σ (f_i + f_j) β(i → j)` over the
@@ -117,55 +129,47 @@ pub fn sparse(form: &[f64]) -> SparseCochain {
 /// the sum over a closed surface vanishes for every edge function `β`. The basis values are
 /// small integers, so `W` comes out exactly (the intersection numbers), where the face sums of
 /// the projected forms carry rounding.
-pub fn wedge_matrix(
-    mesh: &TriMesh,
-    edges: &EdgeIndex,
-    closed: &[Cochain],
-    sparse: &[SparseCochain],
-) -> Vec<f64> {
-    let n = closed.len();
+pub fn wedge_matrix(mesh: &TriMesh, edges: &EdgeIndex, forms: &[SparseCochain]) -> Vec<f64> {
+    let n = forms.len();
     let opp = mesh.opposite_halfedges();
-    let rows: Vec<Vec<f64>> = sparse
-        .par_iter()
-        .zip(closed)
-        .map(|(support, own)| {
-            let mut faces: Vec<usize> = support
-                .iter()
-                .flat_map(|&(e, _)| {
-                    let h = edges.halfedge[e as usize];
-                    [h, opp[h as usize]]
-                })
-                .filter(|&h| h != NO_HALFEDGE)
-                .map(|h| h as usize / 3)
-                .collect();
-            faces.sort_unstable();
-            faces.dedup();
-            // ω(v0 → v1) = ω(h0), ω(v0 → v2) = −ω(h2)
-            let ends = |form: &[f64], f: usize| {
-                (
-                    edges.on_halfedge(form, 3 * f),
-                    -edges.on_halfedge(form, 3 * f + 2),
-                )
-            };
-            closed
-                .iter()
-                .map(|other| {
-                    faces
-                        .iter()
-                        .map(|&f| {
-                            let (a1, a2) = ends(own, f);
-                            let (b1, b2) = ends(other, f);
-                            0.5 * (a1 * b2 - a2 * b1)
-                        })
-                        .sum()
-                })
-                .collect()
-        })
-        .collect();
+    // every form's value on every edge of the supports, and the faces beside them
+    let mut on_edge: HashMap<u32, Vec<(usize, f64)>> = HashMap::new();
+    let mut faces = Vec::new();
+    for (k, form) in forms.iter().enumerate() {
+        for &(e, x) in form {
+            on_edge.entry(e).or_default().push((k, x));
+            let h = edges.halfedge[e as usize];
+            faces.extend(
+                [h, opp[h as usize]]
+                    .into_iter()
+                    .filter(|&h| h != NO_HALFEDGE)
+                    .map(|h| h as usize / 3),
+            );
+        }
+    }
+    faces.sort_unstable();
+    faces.dedup();
+    // X_kj = Σ_f ω_k(v0 → v1) ω_j(v0 → v2), with ω(v0 → v1) = ω(h0), ω(v0 → v2) = −ω(h2)
+    let values = |h: usize, sign: f64| {
+        let s = sign * edges.sign(h);
+        on_edge
+            .get(&edges.edge_of[h])
+            .into_iter()
+            .flatten()
+            .map(move |&(k, x)| (k, s * x))
+    };
+    let mut x = vec![0.0; n * n];
+    for f in faces {
+        for (k, a1) in values(3 * f, 1.0) {
+            for (j, a2) in values(3 * f + 2, -1.0) {
+                x[k * n + j] += a1 * a2;
+            }
+        }
+    }
     let mut w = vec![0.0; n * n];
     for i in 0..n {
         for j in i + 1..n {
-            let v = 0.5 * (rows[i][j] - rows[j][i]);
+            let v = 0.5 * (x[i * n + j] - x[j * n + i]);
             w[i * n + j] = v;
             w[j * n + i] = -v;
         }

@@ -10,11 +10,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::double_cover::double_cover_surface;
-use crate::forms::cohomology::{
-    cohomology_basis, edge_weights, sparse, wedge_matrix, Cochain, SparseCochain,
-};
+use crate::forms::cohomology::{cohomology_basis, edge_weights, wedge_matrix, Cochain};
 use crate::forms::conjugate::{conjugation, ConjugateMethod};
-use crate::forms::harmonic::{ms, HarmonicFactor};
+use crate::forms::harmonic::{ms, storage, HarmonicFactor};
 use crate::forms::layout::integrate;
 use crate::forms::optimal::{choose, finish_zeros, ObjectiveReport, Surface};
 use crate::forms::options::GlobalMapOptions;
@@ -280,20 +278,21 @@ pub(crate) fn global_map_ranked(
             let basis = homology_basis(&surface, options.root)?;
             let on_cut = cut_graph(&surface, &basis);
             let cut = cut_mesh(&surface, &basis, on_cut)?;
+            // the basis forms are sparse (a few hundred edges each): the wedge matrix now,
+            // the Gram matrix from their supports after the projection
             let (closed, closedness_residual) = cohomology_basis(&surface, &basis);
-            // the basis forms are sparse: their supports are kept for the Gram matrix
-            // (the dense forms are projected in place) and give the wedge matrix now
-            let support: Vec<SparseCochain> = closed.par_iter().map(|w| sparse(w)).collect();
-            let wedge = wedge_matrix(&surface, &basis.edges, &closed, &support);
+            let wedge = wedge_matrix(&surface, &basis.edges, &closed);
             let weights = edge_weights(&surface, &basis);
+            // the projection's output pages, faulted in while the factorization runs
+            let storage = storage(closed.len(), basis.edges.len());
             Ok((
                 basis,
                 cut,
                 closed,
                 closedness_residual,
                 weights,
-                support,
                 wedge,
+                storage,
                 ms(t),
             ))
         },
@@ -306,7 +305,7 @@ pub(crate) fn global_map_ranked(
             None => HarmonicFactor::new(&surface, pinned, &options.cholesky),
         },
     );
-    let (basis, cut, closed, closedness_residual, weights, support, wedge, topology_ms) = topology?;
+    let (basis, cut, closed, closedness_residual, weights, wedge, storage, topology_ms) = topology?;
     timings.topology = topology_ms;
     let n = basis.generators.len();
     let surface_genus = n / 2;
@@ -322,12 +321,12 @@ pub(crate) fn global_map_ranked(
         f if f.fits_root(basis.root) => f,
         _ => HarmonicFactor::new(&surface, basis.root, &options.cholesky)?,
     };
-    let harmonic = factor.project(&surface, &basis, &weights, closed, &support)?;
+    let harmonic = factor.project(&surface, &basis, &weights, &closed, storage)?;
     timings.assemble = harmonic.assemble_ms;
     timings.factor = harmonic.factor.analyse_ms + harmonic.factor.factor_ms;
     timings.solve = harmonic.solve_ms;
     let t = Instant::now();
-    let conj = conjugation(wedge, &weights, &support, &harmonic.forms)?;
+    let conj = conjugation(wedge, &weights, &closed, &harmonic.forms)?;
     let lambda = conj.matrix(options.conjugate).to_vec();
     let ph = harmonic_periods(&basis, &harmonic.forms);
     let periods = period_matrix(&ph, &lambda, n);

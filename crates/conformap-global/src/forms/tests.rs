@@ -144,22 +144,49 @@ fn genus_zero_is_refused_naming_the_command() {
     assert!(err.to_string().contains("form"));
 }
 
-/// The sparse wedge and Gram matrices (from the cohomology basis) against the pairwise face
-/// and edge sums of the harmonic forms they stand for, on `mesh` (closed) or its double
-/// covering (`mirror`).
+/// The sparse cohomology basis (closed on every face, dual to the generators), and its
+/// wedge and Gram matrices against the pairwise face and edge sums of the harmonic forms
+/// they stand for, on `mesh` (closed) or its double covering (`mirror`).
 fn check_sparse_products(mesh: &TriMesh, mirror: Option<(Vec<u32>, usize)>) {
     use crate::forms::cohomology::{
-        cohomology_basis, edge_weights, inner_product, sparse, wedge, wedge_matrix,
+        cohomology_basis, edge_weights, inner_product, wedge, wedge_matrix,
     };
     use crate::forms::conjugate::gram_matrix;
-    use crate::forms::harmonic::HarmonicFactor;
+    use crate::forms::harmonic::{storage, HarmonicFactor};
     use conformap_operators::CholeskyOptions;
     let basis = conformap_mesh::homology_basis(mesh, None).expect("basis");
-    let (closed, _) = cohomology_basis(mesh, &basis);
-    let support: Vec<_> = closed.iter().map(|w| sparse(w)).collect();
-    let edges = basis.edges.len();
-    assert!(support.iter().all(|s| s.len() < edges / 4), "sparse basis");
-    let w = wedge_matrix(mesh, &basis.edges, &closed, &support);
+    let (closed, root_residual) = cohomology_basis(mesh, &basis);
+    assert_eq!(root_residual, 0.0);
+    let edges = &basis.edges;
+    for (i, form) in closed.iter().enumerate() {
+        // a small part of the edges, in edge order, no zero stored
+        assert!(
+            form.len() < edges.len() / 4,
+            "form {i}: {} values",
+            form.len()
+        );
+        assert!(form.windows(2).all(|p| p[0].0 < p[1].0), "form {i}");
+        assert!(form.iter().all(|&(_, x)| x != 0.0), "form {i}");
+        let mut w = vec![0.0; edges.len()];
+        for &(e, x) in form {
+            w[e as usize] = x;
+        }
+        // closed on every face, exactly (integer values)
+        for f in 0..mesh.num_faces() {
+            let d: f64 = (3 * f..3 * f + 3).map(|h| edges.on_halfedge(&w, h)).sum();
+            assert_eq!(d, 0.0, "form {i}, face {f}");
+        }
+        // dual to the generators: ∫ ω_i over loop j is δ_ij
+        for (j, g) in basis.generators.iter().enumerate() {
+            let p: f64 = g
+                .halfedges
+                .iter()
+                .map(|&h| edges.on_halfedge(&w, h as usize))
+                .sum();
+            assert_eq!(p, f64::from(u8::from(i == j)), "form {i}, loop {j}");
+        }
+    }
+    let w = wedge_matrix(mesh, edges, &closed);
     let weights = edge_weights(mesh, &basis);
     let options = CholeskyOptions::default();
     let factor = match &mirror {
@@ -167,11 +194,15 @@ fn check_sparse_products(mesh: &TriMesh, mirror: Option<(Vec<u32>, usize)>) {
         None => HarmonicFactor::new(mesh, basis.root, &options),
     }
     .expect("factor");
-    let h = factor
-        .project(mesh, &basis, &weights, closed, &support)
-        .expect("project")
-        .forms;
-    let g = gram_matrix(&weights, &support, &h);
+    let store = storage(closed.len(), edges.len());
+    let projected = factor
+        .project(mesh, &basis, &weights, &closed, store)
+        .expect("project");
+    // coclosed on the whole surface (for a covering: from the two half-size solves)
+    let residual = projected.codifferential_residual;
+    assert!(residual < 1e-10, "{residual:e}");
+    let h = projected.forms;
+    let g = gram_matrix(&weights, &closed, &h);
     let n = h.len();
     let scale = (0..n).map(|i| g[i * n + i]).fold(0.0f64, f64::max);
     for i in 0..n {
