@@ -143,6 +143,43 @@ impl TriMesh {
         })
     }
 
+    /// A mesh opened from a validated one (`topology::cut_mesh`): `faces` are the
+    /// source's faces with their corners renumbered to copies of its vertices (`positions`
+    /// copied from it) and `opposite` its half-edge matching with the opened edges removed,
+    /// so the per-face and per-index checks and the half-edge matching of
+    /// [`Self::try_new`] would only repeat the source's. What opening can break is checked:
+    /// every vertex's fan and the boundary loops; the components are counted.
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifoldVertex`] if a copy's corners do not form one fan.
+    pub(crate) fn opened(
+        positions: Vec<[f64; 3]>,
+        faces: Vec<[u32; 3]>,
+        opposite: Vec<u32>,
+    ) -> Result<Self, MeshError> {
+        let n = positions.len();
+        debug_assert_eq!(opposite.len(), 3 * faces.len());
+        let (fans, components) = rayon::join(
+            || check_fans_and_loops(n, &faces, &opposite),
+            || count_components(n, &faces),
+        );
+        let (is_boundary, boundary_loops) = fans?;
+        let edge_count = opposite
+            .iter()
+            .enumerate()
+            .filter(|&(h, &o)| o == NO_HALFEDGE || (h as u32) < o)
+            .count();
+        Ok(Self {
+            positions,
+            faces,
+            opposite,
+            boundary_loops,
+            is_boundary,
+            edge_count,
+            components,
+        })
+    }
+
     /// Vertex positions.
     pub fn positions(&self) -> &[[f64; 3]] {
         &self.positions

@@ -22,12 +22,21 @@ pub fn cut_graph(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<bool> {
         degree[a as usize] += 1;
         degree[b as usize] += 1;
     }
-    // cut edges around each vertex, to peel dangling branches leaf by leaf
-    let mut incident: Vec<Vec<u32>> = vec![Vec::new(); mesh.num_vertices()];
+    // cut edges around each vertex (compressed rows), to peel dangling branches leaf by
+    // leaf
+    let mut offsets = Vec::with_capacity(degree.len() + 1);
+    offsets.push(0usize);
+    for &d in &degree {
+        offsets.push(offsets[offsets.len() - 1] + d as usize);
+    }
+    let mut fill = offsets[..degree.len()].to_vec();
+    let mut incident = vec![0u32; offsets[degree.len()]];
     for e in (0..ne).filter(|&e| on_cut[e]) {
         let (a, b) = ends(e);
-        incident[a as usize].push(e as u32);
-        incident[b as usize].push(e as u32);
+        for v in [a as usize, b as usize] {
+            incident[fill[v]] = e as u32;
+            fill[v] += 1;
+        }
     }
     let mut leaves: Vec<u32> = (0..mesh.num_vertices() as u32)
         .filter(|&v| degree[v as usize] == 1)
@@ -37,7 +46,8 @@ pub fn cut_graph(mesh: &TriMesh, basis: &HomologyBasis) -> Vec<bool> {
         if degree[v] != 1 {
             continue;
         }
-        let Some(&e) = incident[v].iter().find(|&&e| on_cut[e as usize]) else {
+        let around = &incident[offsets[v]..offsets[v + 1]];
+        let Some(&e) = around.iter().find(|&&e| on_cut[e as usize]) else {
             continue;
         };
         on_cut[e as usize] = false;
@@ -119,7 +129,27 @@ pub fn cut_mesh(
         }
         cut_faces.push(nt);
     }
-    let cut = TriMesh::try_new(positions, cut_faces)?;
+    // the opened mesh's half-edge matching: the input's, except across an opened edge
+    // (whose two sides got distinct copies of an end; a flagged edge whose sides still
+    // share both ends stays matched, as a fresh matching would find it)
+    let opposite: Vec<u32> = opp
+        .iter()
+        .enumerate()
+        .map(|(h, &o)| {
+            if o == NO_HALFEDGE || !on_cut[basis.edges.edge_of[h] as usize] {
+                return o;
+            }
+            let (f, k, g, m) = (h / 3, h % 3, o as usize / 3, o as usize % 3);
+            let glued = cut_faces[f][k] == cut_faces[g][(m + 1) % 3]
+                && cut_faces[f][(k + 1) % 3] == cut_faces[g][m];
+            if glued {
+                o
+            } else {
+                NO_HALFEDGE
+            }
+        })
+        .collect();
+    let cut = TriMesh::opened(positions, cut_faces, opposite)?;
     Ok(CutMesh {
         mesh: cut,
         original,

@@ -106,6 +106,32 @@ mod tests {
             }
         }
         assert!(degree.iter().all(|&d| d != 1));
+        // the opened mesh is the one a fresh validation of its arrays gives, also with an
+        // extra flagged edge away from the cut (its sides keep both ends: it stays matched)
+        let same_as_fresh = |cut: &CutMesh| {
+            let fresh = TriMesh::try_new(cut.mesh.positions().to_vec(), cut.mesh.faces().to_vec())
+                .expect("valid");
+            assert_eq!(cut.mesh.opposite_halfedges(), fresh.opposite_halfedges());
+            assert_eq!(cut.mesh.boundary_loops(), fresh.boundary_loops());
+            assert_eq!(cut.mesh.boundary_flags(), fresh.boundary_flags());
+            assert_eq!(cut.mesh.num_edges(), fresh.num_edges());
+            assert_eq!(cut.mesh.num_components(), fresh.num_components());
+        };
+        same_as_fresh(&cut);
+        let away = (0..basis.edges.len()).find(|&e| {
+            let (a, b) = mesh.halfedge_vertices(basis.edges.halfedge[e] as usize);
+            degree[a as usize] == 0 && degree[b as usize] == 0
+        });
+        // (the 3 × 3 torus has none: every vertex is on the cut)
+        assert!(away.is_some() || mesh.num_faces() < 50, "an edge away from the cut");
+        if let Some(e) = away {
+            let mut on_cut = cut.on_cut.clone();
+            on_cut[e] = true;
+            let extra = cut_mesh(mesh, &basis, on_cut).expect("valid cut");
+            let h = basis.edges.halfedge[e] as usize;
+            assert_ne!(extra.mesh.opposite_halfedges()[h], crate::NO_HALFEDGE);
+            same_as_fresh(&extra);
+        }
     }
 
     #[test]
