@@ -123,7 +123,10 @@ mod tests {
             degree[a as usize] == 0 && degree[b as usize] == 0
         });
         // (the 3 × 3 torus has none: every vertex is on the cut)
-        assert!(away.is_some() || mesh.num_faces() < 50, "an edge away from the cut");
+        assert!(
+            away.is_some() || mesh.num_faces() < 50,
+            "an edge away from the cut"
+        );
         if let Some(e) = away {
             let mut on_cut = cut.on_cut.clone();
             on_cut[e] = true;
