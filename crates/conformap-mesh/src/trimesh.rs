@@ -126,13 +126,25 @@ impl TriMesh {
                 return Err(e);
             }
         };
-        let (is_boundary, boundary_loops) = check_fans_and_loops(n, &faces, &opposite)?;
+        let fans = check_fans_and_loops(n, &faces, &opposite)?;
+        Ok(Self::checked(positions, faces, opposite, fans, components))
+    }
+
+    /// The mesh of checked arrays: its half-edge matching, boundary flags and loops, and
+    /// component count as found; the edges counted from the matching.
+    fn checked(
+        positions: Vec<[f64; 3]>,
+        faces: Vec<[u32; 3]>,
+        opposite: Vec<u32>,
+        (is_boundary, boundary_loops): (Vec<bool>, Vec<Vec<u32>>),
+        components: usize,
+    ) -> Self {
         let edge_count = opposite
             .iter()
             .enumerate()
             .filter(|&(h, &o)| o == NO_HALFEDGE || (h as u32) < o)
             .count();
-        Ok(Self {
+        Self {
             positions,
             faces,
             opposite,
@@ -140,7 +152,7 @@ impl TriMesh {
             is_boundary,
             edge_count,
             components,
-        })
+        }
     }
 
     /// A mesh opened from a validated one (`topology::cut_mesh`): `faces` are the
@@ -163,21 +175,7 @@ impl TriMesh {
             || check_fans_and_loops(n, &faces, &opposite),
             || count_components(n, &faces),
         );
-        let (is_boundary, boundary_loops) = fans?;
-        let edge_count = opposite
-            .iter()
-            .enumerate()
-            .filter(|&(h, &o)| o == NO_HALFEDGE || (h as u32) < o)
-            .count();
-        Ok(Self {
-            positions,
-            faces,
-            opposite,
-            boundary_loops,
-            is_boundary,
-            edge_count,
-            components,
-        })
+        Ok(Self::checked(positions, faces, opposite, fans?, components))
     }
 
     /// Vertex positions.
