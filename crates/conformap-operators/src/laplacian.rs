@@ -5,7 +5,7 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use sprs::CsMat;
 
-use crate::geometry::{face_points, triangle_cotangents};
+use crate::geometry::first_corner_cotangents;
 
 /// Assembles the cotangent Laplacian of CEM Eq. 6 as a symmetric CSC matrix (full storage,
 /// sorted row indices):
@@ -56,11 +56,7 @@ pub fn cotan_laplacian_part(mesh: &TriMesh, faces: usize, vertices: usize) -> Cs
         faces.iter().flatten().all(|&v| (v as usize) < n),
         "a face uses a vertex beyond {n}"
     );
-    let cots: Vec<[f64; 3]> = (0..faces.len())
-        .into_par_iter()
-        .with_min_len(EDGE_BLOCK / 3)
-        .map(|f| triangle_cotangents(face_points(mesh, f)))
-        .collect();
+    let cots = first_corner_cotangents(mesh, faces.len());
     let opposite = &mesh.opposite_halfedges()[..3 * faces.len()];
     let inside = 3 * faces.len() as u32;
     // half-edge h = 3f + k runs faces[f][k] → faces[f][k+1]; its opposite corner is k + 2
