@@ -30,6 +30,7 @@ mod laplacian;
 mod lu;
 mod mean_value;
 pub mod memory;
+pub mod primitives;
 mod quality;
 
 pub use cholesky::{
@@ -53,4 +54,5 @@ pub use laplacian::{
 pub use lu::LuSolver;
 pub use mean_value::mean_value_matrix;
 pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
+pub use primitives::{planar, vec3};
 pub use quality::{mesh_quality, MeshQuality, FOLD_NORMAL_COS};
