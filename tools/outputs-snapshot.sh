@@ -14,9 +14,11 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
-normalize() { # JSON (one document or JSON lines) without the run-dependent fields
-    jq -cS 'walk(if type == "object" then del(.timings_ms, .memory, .peak_rss_bytes,
-        .peak_rss_scope, .elapsed_ms, .conformap_version) else . end)' "$1"
+normalize() { # JSON (one document or JSON lines) without the run-dependent fields: every
+    # key ending in `_ms` (timings), the memory limit and peak, the version
+    jq -cS 'walk(if type == "object" then with_entries(select(.key
+        | test("_ms$|^limit_bytes$|^limit_source$|^peak_rss|^conformap_version$") | not))
+        else . end)' "$1"
 }
 
 if [[ "${1:-}" == "--compare" ]]; then
@@ -29,6 +31,11 @@ if [[ "${1:-}" == "--compare" ]]; then
                 echo "differs: $f"; bad=1
             fi ;;
         *.stderr) ;; # summary lines carry times
+        *.stdout) # JSON (info --json, metrics --json, batch lines) or text
+            if jq -e . "$a/$f" >/dev/null 2>&1; then
+                diff -q <(normalize "$a/$f") <(normalize "$b/$f") >/dev/null \
+                    || { echo "differs: $f"; bad=1; }
+            elif ! cmp -s "$a/$f" "$b/$f"; then echo "differs: $f"; bad=1; fi ;;
         *)
             if ! cmp -s "$a/$f" "$b/$f"; then echo "differs: $f"; bad=1; fi ;;
         esac
@@ -75,6 +82,7 @@ run render_sphere render "$F/spot.obj" spot_sphere.obj -o r_sphere.png --size 25
 run morph_glb morph "$F/morph/ict_neutral.obj" "$F/morph/ict_pout.obj" --landmarks \
     "$F/morph/ict_neutral.landmarks.txt" "$F/morph/ict_pout.landmarks.txt" --frames 4 \
     -o morph.glb --report morph.json
+mkdir -p "$out/frames"
 run morph_dir morph "$F/morph/ict_neutral.obj" "$F/morph/ict_pout.obj" --landmarks \
     "$F/morph/ict_neutral.landmarks.txt" "$F/morph/ict_pout.landmarks.txt" --frames 3 \
     -o frames/ --hard
