@@ -15,6 +15,9 @@
 //! - Per face, for pictures and custom statistics: [`face_distortions`] /
 //!   [`face_distortion`] → [`FaceDistortion`] (corner angle differences, `|μ|`, areas), and
 //!   [`isometric_chart`] to judge maps into 3D (a sphere map's chord triangles) the same way.
+//! - Overlap of a layout: [`raster_overlap`] (texels covered twice on an `N × N` raster,
+//!   as texture atlases are judged) and [`boundary_crossings`] (exact: a flip-free layout
+//!   whose boundary image crosses nowhere is one-to-one).
 //! - [`MetricsError`]: a map that cannot be judged (wrong length, NaN at a vertex, …).
 //!
 //! # Example
@@ -49,6 +52,7 @@ mod error;
 mod face;
 mod metrics;
 mod options;
+mod overlap;
 mod per_face;
 mod report;
 mod stats;
@@ -60,6 +64,9 @@ pub use error::{MetricsError, MAP_ABS_LIMIT};
 pub use face::BELTRAMI_ABS_CAP;
 pub use metrics::{corner_map_metrics, planar_map_metrics};
 pub use options::{MetricsOptions, OuterCircle};
+pub use overlap::{
+    boundary_crossings, raster_overlap, RasterFrame, RasterOverlap, OVERLAP_RESOLUTION,
+};
 pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
 pub use report::{Histogram, LoopCircle, MapMetrics};
 pub use stats::ANGLE_HISTOGRAM_EDGES_DEG;
