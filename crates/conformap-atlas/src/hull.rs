@@ -1,0 +1,138 @@
+//! Convex hull of a planar point set and its minimum-area bounding rectangle.
+
+/// The convex hull of `points`, counter-clockwise, without collinear points (Andrew's
+/// monotone chain, `O(n log n)`). Fewer than three distinct points give those points.
+///
+/// ```
+/// let hull = conformap_atlas::hull::convex_hull(&[[0.0, 0.0], [1.0, 0.0], [0.5, 0.2],
+///     [1.0, 1.0], [0.0, 1.0]]);
+/// assert_eq!(hull, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+/// ```
+pub fn convex_hull(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut p: Vec<[f64; 2]> = points.to_vec();
+    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * p.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &[f64; 2]>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+/// A rectangle around a chart: turn the chart by `angle` (radians, counter-clockwise about
+/// the origin), and it lies in `[min[0], min[0] + size[0]] × [min[1], min[1] + size[1]]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundingRect {
+    /// The rotation that makes the rectangle axis-aligned.
+    pub angle: f64,
+    /// Its lower-left corner after the rotation.
+    pub min: [f64; 2],
+    /// Width and height after the rotation (width ≥ height).
+    pub size: [f64; 2],
+}
+
+/// Rotates `p` by `angle` about the origin.
+#[inline]
+pub fn rotate(p: [f64; 2], angle: f64) -> [f64; 2] {
+    let (s, c) = angle.sin_cos();
+    [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+}
+
+/// The bounding rectangle of least area over every orientation (it has a side on a hull
+/// edge, so the hull's edge directions are the candidates: rotating calipers in `O(h²)` on
+/// the hull's `h` points, few for a chart's outline after hulling), turned so that its width
+/// is at least its height. An empty input gives an empty rectangle at the origin.
+pub fn min_area_rect(points: &[[f64; 2]]) -> BoundingRect {
+    let hull = convex_hull(points);
+    let mut best = bounds(&hull, 0.0);
+    let mut best_area = best.size[0] * best.size[1];
+    for k in 0..hull.len() {
+        let (a, b) = (hull[k], hull[(k + 1) % hull.len()]);
+        let angle = -(b[1] - a[1]).atan2(b[0] - a[0]);
+        let r = bounds(&hull, angle);
+        let area = r.size[0] * r.size[1];
+        if area < best_area * (1.0 - 1e-12) {
+            best = r;
+            best_area = area;
+        }
+    }
+    if best.size[1] > best.size[0] {
+        best = bounds(&hull, best.angle + std::f64::consts::FRAC_PI_2);
+    }
+    best
+}
+
+/// The axis-aligned bounds of `points` turned by `angle`.
+fn bounds(points: &[[f64; 2]], angle: f64) -> BoundingRect {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for &p in points {
+        let q = rotate(p, angle);
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    if points.is_empty() {
+        return BoundingRect {
+            angle,
+            min: [0.0; 2],
+            size: [0.0; 2],
+        };
+    }
+    BoundingRect {
+        angle,
+        min: lo,
+        size: [hi[0] - lo[0], hi[1] - lo[1]],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_turned_rectangle_is_found_at_its_own_size() {
+        let rect = [[0.0, 0.0], [3.0, 0.0], [3.0, 1.0], [0.0, 1.0], [1.5, 0.5]];
+        let turned: Vec<[f64; 2]> = rect.iter().map(|&p| rotate(p, 0.7)).collect();
+        let r = min_area_rect(&turned);
+        assert!(
+            (r.size[0] - 3.0).abs() < 1e-12 && (r.size[1] - 1.0).abs() < 1e-12,
+            "{r:?}"
+        );
+        // every point inside after the rotation
+        for &p in &turned {
+            let q = rotate(p, r.angle);
+            assert!(q[0] >= r.min[0] - 1e-12 && q[0] <= r.min[0] + r.size[0] + 1e-12);
+            assert!(q[1] >= r.min[1] - 1e-12 && q[1] <= r.min[1] + r.size[1] + 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_standing_rectangle_lies_down_and_degenerate_input_is_handled() {
+        let r = min_area_rect(&[[0.0, 0.0], [1.0, 0.0], [1.0, 4.0], [0.0, 4.0]]);
+        assert!((r.size[0] - 4.0).abs() < 1e-12 && (r.size[1] - 1.0).abs() < 1e-12);
+        assert_eq!(min_area_rect(&[]).size, [0.0, 0.0]);
+        let seg = min_area_rect(&[[0.0, 0.0], [1.0, 1.0]]);
+        assert!((seg.size[0] - 2f64.sqrt()).abs() < 1e-12 && seg.size[1].abs() < 1e-12);
+    }
+}

@@ -1,0 +1,44 @@
+//! Texture atlases for conformap: charts of any mesh packed without overlap into the unit
+//! square.
+//!
+//! An atlas is a set of charts (flat, fold-free layouts of pieces of a surface, each a disk)
+//! placed side by side in the texture square `[0,1]²` with one texel density and a margin
+//! between them. This crate owns that placement; the charts come from the flattening code
+//! of `conformap-disk`. It depends on nothing of the workspace (charts are plain points) and
+//! never reads or writes files.
+//!
+//! # Contents
+//! - [`pack_charts`] → [`Packing`]: each chart turned to its smallest bounding rectangle,
+//!   scaled by one common factor (the largest that fits) and placed by a skyline packer,
+//!   configured by [`PackOptions`] (resolution, margin in texels, rotation).
+//! - [`hull`]: convex hull and the minimum-area bounding rectangle (rotating calipers).
+//! - [`AtlasError`]: what cannot be packed.
+//!
+//! # Example
+//! ```
+//! use conformap_atlas::{pack_charts, PackOptions};
+//! // three charts: a 2 × 1 rectangle, a unit square and a thin triangle
+//! let charts = vec![
+//!     vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]],
+//!     vec![[5.0, 5.0], [6.0, 5.0], [6.0, 6.0], [5.0, 6.0]],
+//!     vec![[0.0, 0.0], [3.0, 0.0], [0.0, 0.5]],
+//! ];
+//! let packing = pack_charts(&charts, &PackOptions::default())?;
+//! for (chart, placement) in charts.iter().zip(&packing.charts) {
+//!     for &p in chart {
+//!         let [u, v] = placement.apply(p);
+//!         assert!((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+//!     }
+//! }
+//! // their rectangles pack best as a 3 × 1.5 block: 3.75 / 9 of the square
+//! assert!(packing.efficiency > 0.41);
+//! # Ok::<(), conformap_atlas::AtlasError>(())
+//! ```
+
+mod error;
+pub mod hull;
+mod pack;
+mod skyline;
+
+pub use error::AtlasError;
+pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};
