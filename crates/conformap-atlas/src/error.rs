@@ -22,6 +22,12 @@ pub enum AtlasError {
         /// What it must be.
         why: &'static str,
     },
+    /// The Laplacian of a chart could not be factored.
+    #[error("the surface's Laplacian could not be factored: {why}")]
+    Factorization {
+        /// The solver's message.
+        why: String,
+    },
     /// The margins alone do not fit: too many charts for the resolution.
     #[error(
         "{charts} charts with a margin of {margin} texels do not fit in a {resolution}² \

@@ -4,13 +4,17 @@
 //! An atlas is a set of charts (flat, fold-free layouts of pieces of a surface, each a disk)
 //! placed side by side in the texture square `[0,1]²` with one texel density and a margin
 //! between them. This crate owns that placement; the charts come from the flattening code
-//! of `conformap-disk`. It depends on nothing of the workspace (charts are plain points) and
-//! never reads or writes files.
+//! of `conformap-disk`. Packing depends on nothing of the workspace (charts are plain
+//! points); cones on `conformap-mesh` and `conformap-operators`. It never reads or writes
+//! files.
 //!
 //! # Contents
 //! - [`pack_charts`] → [`Packing`]: each chart turned to its smallest bounding rectangle,
 //!   scaled by one common factor (the largest that fits) and placed by a skyline packer,
 //!   configured by [`PackOptions`] (resolution, margin in texels, rotation).
+//! - [`cones`]: the cone metric of a set of cone singularities ([`ConeMetric`], one
+//!   factorization) and their automatic placement with the least area spread
+//!   ([`place_cones`]).
 //! - [`hull`]: convex hull and the minimum-area bounding rectangle (rotating calipers).
 //! - [`AtlasError`]: what cannot be packed.
 //!
@@ -35,10 +39,12 @@
 //! # Ok::<(), conformap_atlas::AtlasError>(())
 //! ```
 
+pub mod cones;
 mod error;
 pub mod hull;
 mod pack;
 mod skyline;
 
+pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
 pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};

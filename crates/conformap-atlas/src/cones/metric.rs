@@ -1,0 +1,188 @@
+//! The cone metric: the conformal scale factor `u` that flattens a surface everywhere but at
+//! a few cone vertices, from one factorization of the cotangent Laplacian.
+//!
+//! With `L` the positive semi-definite cotangent Laplacian, `K` the angle defects of the
+//! surface (`2π − Σ angles` inside, `π − Σ angles` on a boundary) and `K̃` the target
+//! defects (the cone defects `k_c` at the cones, 0 elsewhere), the scale factor of the
+//! target metric `e^{2u} g` solves the linearized Yamabe equation `L u = K̃ − K`.
+//! - Closed surface: `Σ k_c = 2πχ` makes the system consistent; `u` is fixed up to a
+//!   constant by pinning one vertex (`u = 0` there).
+//! - Surface with boundary: `u = 0` on the boundary (the free boundary of boundary first
+//!   flattening: lengths kept there), no condition on the defects.
+//!
+//! `u` is linear in the defects, so `u = Σ k_c g_c − u_K` with `g_c = L⁻¹ e_c` (the
+//! Green's function of cone `c`) and `u_K = L⁻¹ K` on the free vertices: every question
+//! about cones — which angles, which vertices — is a few solves with one factor.
+
+use conformap_mesh::TriMesh;
+use conformap_operators::{corner_angles, cotan_laplacian, Cholesky, LaplacianBlocks, Partition};
+
+use crate::error::AtlasError;
+
+/// One factorization of a surface's Laplacian with its pinned vertices, and its curvature.
+pub struct ConeMetric {
+    part: Partition,
+    chol: Cholesky,
+    /// Angle defects per vertex.
+    curvature: Vec<f64>,
+    /// `u_K = L⁻¹ K` on the free vertices, 0 on the pinned ones (vertex order).
+    u_k: Vec<f64>,
+    closed: bool,
+    faces: Vec<[u32; 3]>,
+    positions: Vec<[f64; 3]>,
+    /// `√(surface area)`, the length scale of cone spacing.
+    length: f64,
+}
+
+impl ConeMetric {
+    /// Factors the Laplacian of `mesh` (one component, closed or with boundary).
+    ///
+    /// # Errors
+    /// [`AtlasError::Factorization`] when the Laplacian cannot be factored (a mesh the
+    /// validation let through with degenerate weights).
+    pub fn new(mesh: &TriMesh) -> Result<Self, AtlasError> {
+        let n = mesh.num_vertices();
+        let loops = mesh.boundary_loops();
+        let pinned: Vec<u32> = if loops.is_empty() {
+            // the vertex pinned is the one of highest index: any vertex would do (u is
+            // defined up to a constant), a fixed one keeps results deterministic
+            vec![(n - 1) as u32]
+        } else {
+            loops.iter().flatten().copied().collect()
+        };
+        let part = Partition::new(n, &pinned);
+        let l = cotan_laplacian(mesh);
+        let blocks = LaplacianBlocks::new(&l, &part);
+        let chol = Cholesky::factor(&blocks.ii)
+            .map_err(|e| AtlasError::Factorization { why: e.to_string() })?;
+        let curvature = angle_defects(mesh, &part);
+        let mut metric = Self {
+            part,
+            chol,
+            curvature,
+            u_k: Vec::new(),
+            closed: loops.is_empty(),
+            faces: mesh.faces().to_vec(),
+            positions: mesh.positions().to_vec(),
+            length: conformap_operators::surface_area(mesh).sqrt(),
+        };
+        metric.u_k = metric.solve_full(&metric.curvature.clone());
+        Ok(metric)
+    }
+
+    /// Whether the surface is closed (cone defects must then sum to `2πχ`).
+    pub fn closed(&self) -> bool {
+        self.closed
+    }
+
+    /// Angle defects of the surface, per vertex (`2π − Σ angles` inside, `π − Σ angles` on
+    /// the boundary: its geodesic curvature).
+    pub fn curvature(&self) -> &[f64] {
+        &self.curvature
+    }
+
+    /// Total defect the cones of a closed surface must carry: `Σ K = 2πχ` (0 when the
+    /// surface has a boundary, which takes up whatever the cones leave).
+    pub fn total_defect(&self) -> f64 {
+        if self.closed {
+            self.curvature.iter().sum()
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether vertex `v` is pinned (`u = 0` there: the boundary, or the one pinned vertex
+    /// of a closed surface).
+    pub fn pinned(&self, v: u32) -> bool {
+        !self.part.is_interior[v as usize]
+    }
+
+    /// `L⁻¹ b` on the free vertices, 0 on the pinned ones, in vertex order.
+    fn solve_full(&self, b: &[f64]) -> Vec<f64> {
+        let mut x = self.part.interior_values(b);
+        self.chol.solve_in_place(&mut x, 1);
+        let zeros = vec![0.0; self.part.boundary.len()];
+        self.part.assemble(&x, &zeros)
+    }
+
+    /// The Green's function of vertex `v`: `L⁻¹ e_v` (zero for a pinned vertex).
+    pub fn green(&self, v: u32) -> Vec<f64> {
+        let mut e = vec![0.0; self.curvature.len()];
+        e[v as usize] = 1.0;
+        self.solve_full(&e)
+    }
+
+    /// The scale factor `u` with defect `k` at each cone `(vertex, k)` and 0 elsewhere
+    /// (`Σ k = 2πχ` on a closed surface; see the module docs).
+    pub fn scale_factor(&self, cones: &[(u32, f64)]) -> Vec<f64> {
+        let mut b = vec![0.0; self.curvature.len()];
+        for &(v, k) in cones {
+            b[v as usize] += k;
+        }
+        let mut u = self.solve_full(&b);
+        for (x, y) in u.iter_mut().zip(&self.u_k) {
+            *x -= y;
+        }
+        u
+    }
+
+    /// Whether vertices `a` and `b` lie within `fraction · √(surface area)` of each other
+    /// (straight-line distance).
+    pub fn near(&self, a: u32, b: u32, fraction: f64) -> bool {
+        let (p, q) = (self.positions[a as usize], self.positions[b as usize]);
+        let d2 = (0..3).map(|k| (p[k] - q[k]) * (p[k] - q[k])).sum::<f64>();
+        d2 < (fraction * self.length).powi(2)
+    }
+
+    /// `u_K = L⁻¹ K` (the part of every scale factor the cones do not set).
+    pub fn curvature_potential(&self) -> &[f64] {
+        &self.u_k
+    }
+
+    /// Per face, the mean of `2u` over its corners: the log area scale of the face in the
+    /// cone metric (up to a constant).
+    pub fn face_log_scale(&self, u: &[f64]) -> Vec<f64> {
+        self.faces
+            .iter()
+            .map(|f| 2.0 * (u[f[0] as usize] + u[f[1] as usize] + u[f[2] as usize]) / 3.0)
+            .collect()
+    }
+
+    /// The area spread of the cone metric: the standard deviation over faces of
+    /// [`Self::face_log_scale`], which the flattened layout reproduces (its
+    /// `sd log(uv area share / 3D area share)`).
+    pub fn area_spread(&self, u: &[f64]) -> f64 {
+        sd(&self.face_log_scale(u))
+    }
+}
+
+/// Standard deviation (population) of `x`.
+pub(crate) fn sd(x: &[f64]) -> f64 {
+    let n = x.len().max(1) as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt()
+}
+
+/// Angle defects: `2π − Σ angles` at interior vertices, `π − Σ angles` on the boundary
+/// (boundary = the pinned set only when the surface has a boundary; on a closed surface
+/// every vertex is interior).
+fn angle_defects(mesh: &TriMesh, part: &Partition) -> Vec<f64> {
+    let n = mesh.num_vertices();
+    let mut sum = vec![0.0; n];
+    for (f, a) in mesh.faces().iter().zip(corner_angles(mesh)) {
+        for k in 0..3 {
+            sum[f[k] as usize] += a[k];
+        }
+    }
+    let on_boundary = |v: usize| !mesh.boundary_loops().is_empty() && !part.is_interior[v];
+    (0..n)
+        .map(|v| {
+            let full = if on_boundary(v) {
+                std::f64::consts::PI
+            } else {
+                std::f64::consts::TAU
+            };
+            full - sum[v]
+        })
+        .collect()
+}
