@@ -2,7 +2,10 @@
 //! area spread (sd over faces of the log area ratio), mean angle distortion, flipped faces,
 //! boundary self-touches and times (median of 3) — a measurement, not a test.
 //!
-//! `cargo run --release -p conformap-disk --example flatten_table -- [--conjugate] [--reps N] MESH.obj...`
+//! `cargo run --release -p conformap-disk --example flatten_table -- [--conjugate] [--rectangle] [--reps N] MESH.obj...`
+//!
+//! `--conjugate` extends `y` as the conjugate of `x`; `--rectangle` maps onto a rectangle with
+//! automatic corners instead of the free boundary.
 //!
 //! Without meshes it runs every mesh with a boundary in the shared mesh directory
 //! (`$CONFORMAP_SHARED_MESHES`, else `/work/shared/meshes`). `flatten` is timed as the whole
@@ -13,8 +16,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use conformap_disk::{
-    compute_disk_map, flatten, koebe, DiskMethod, DiskOptions, FlattenInterior, FlattenOptions,
-    KoebeOptions,
+    compute_disk_map, flatten, koebe, DiskMethod, DiskOptions, FlattenBoundary, FlattenInterior,
+    FlattenOptions, KoebeOptions,
 };
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
@@ -53,7 +56,8 @@ fn disk_seconds(mesh: &TriMesh) -> Result<f64, Box<dyn std::error::Error>> {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let conjugate = args.iter().any(|a| a == "--conjugate");
-    args.retain(|a| a != "--conjugate");
+    let rectangle = args.iter().any(|a| a == "--rectangle");
+    args.retain(|a| a != "--conjugate" && a != "--rectangle");
     let mut reps = 3;
     if let Some(i) = args.iter().position(|a| a == "--reps") {
         reps = args.get(i + 1).and_then(|s| s.parse().ok()).unwrap_or(3);
@@ -74,12 +78,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         FlattenInterior::Harmonic
     };
-    let options = FlattenOptions::DEFAULT.with_interior(interior);
+    let mut options = FlattenOptions::DEFAULT.with_interior(interior);
+    if rectangle {
+        options = options.with_boundary(FlattenBoundary::Rectangle {
+            corners: None,
+            aspect: None,
+        });
+    }
     println!(
-        "| mesh | V | area spread | angle ° | flipped | touches | operator (folds before) | \
-         closure | flatten s | disk s | flatten/disk |"
+        "| mesh | V | area spread | angle ° | flipped | degenerate | touches | operator (folds \
+         before) | closure | flatten s | disk s | flatten/disk |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|");
     for path in paths {
         let name = path
             .file_stem()
@@ -108,11 +118,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let r = &out.report;
         let (f, d) = (median(tf), median(td));
         println!(
-            "| {name} | {} | {:.4} | {:.3} | {} | {} | {} ({}) | {:.1e} | {:.3} | {:.3} | {:.2} |",
+            "| {name} | {} | {:.4} | {:.3} | {} | {} | {} | {} ({}) | {:.1e} | {:.3} | {:.3} | {:.2} |",
             mesh.num_vertices(),
             r.metrics.area_distortion_log.sd,
             r.metrics.angle_distortion_deg.mean,
             r.metrics.flipped_faces,
+            r.metrics.degenerate_faces,
             r.boundary_touches,
             r.interior_operator,
             r.flipped_before_fallback,

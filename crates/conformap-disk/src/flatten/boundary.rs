@@ -27,15 +27,20 @@ pub(crate) struct Curvatures {
     pub boundary: Vec<f64>,
 }
 
-impl Curvatures {
-    /// The curvatures of `mesh` for the problem's partition.
-    pub(crate) fn new(mesh: &TriMesh, partition: &Partition) -> Self {
-        let mut sums = vec![0.0; mesh.num_vertices()];
-        for (t, a) in mesh.faces().iter().zip(corner_angles(mesh)) {
-            for k in 0..3 {
-                sums[t[k] as usize] += a[k];
-            }
+/// The sum of the corner angles at every vertex.
+pub(crate) fn angle_sums(mesh: &TriMesh) -> Vec<f64> {
+    let mut sums = vec![0.0; mesh.num_vertices()];
+    for (t, a) in mesh.faces().iter().zip(corner_angles(mesh)) {
+        for k in 0..3 {
+            sums[t[k] as usize] += a[k];
         }
+    }
+    sums
+}
+
+impl Curvatures {
+    /// The curvatures for the problem's partition from the [`angle_sums`] of its mesh.
+    pub(crate) fn new(sums: &[f64], partition: &Partition) -> Self {
         let tau = std::f64::consts::TAU;
         let pi = std::f64::consts::PI;
         Self {

@@ -59,10 +59,16 @@ fn snapped(phi: f64) -> Complex64 {
     }
 }
 
-/// The closed curve: the lengths changed as little as possible, `min Σ (l*_k − l̃_k)² / l_k`
-/// (the norm of the inverse boundary mass matrix `N⁻¹`, `N = diag(l)`), subject to
+/// The closed curve: the lengths changed as little as possible, `min Σ (l*_k − l̃_k)² / w_k`
+/// (the norm of the inverse boundary mass matrix `N⁻¹`, `N = diag(w)`), subject to
 /// `Σ l*_k T_k = 0` (the paper's Eq. 13): `l* = l̃ − N Tᵀ λ` with the 2 × 2 system
 /// `(T N Tᵀ) λ = T l̃`.
+///
+/// [`super::flatten`] weights by the target lengths, `w = l̃` (the mass matrix of the
+/// flattened boundary, the paper's with `u = 0`): every edge then changes by the same
+/// *relative* amount along a direction, `l*_k = l̃_k (1 − T_k · λ)`, so the tiny edges of a
+/// crowded boundary (a rectangle's corners on a long limb, `e^u ≪ 1`) are not pushed to
+/// negative lengths, as weighting by the 3D lengths does.
 #[derive(Debug, Clone)]
 pub(crate) struct ClosedCurve {
     /// Vertex positions in loop order, `points[start] = 0`.

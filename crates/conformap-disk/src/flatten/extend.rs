@@ -6,7 +6,7 @@
 use num_complex::Complex64;
 
 use super::boundary::PinnedLaplacian;
-use crate::laplacian_choice::{count_flipped, InteriorOperator};
+use crate::laplacian_choice::{count_flipped_where, InteriorOperator};
 use crate::{DiskError, DiskProblem};
 
 /// How the interior of the flattening is computed from its boundary curve.
@@ -59,10 +59,11 @@ pub(crate) fn extend(
     boundary: &[Complex64],
     variant: FlattenInterior,
     pinned: Option<&PinnedLaplacian>,
+    ears: &[bool],
 ) -> Result<Extension, DiskError> {
     if variant == FlattenInterior::Conjugate {
         let map = conjugate(problem, boundary, pinned)?;
-        let (flips, _) = count_flipped(problem.mesh(), &map);
+        let flips = count_folds(&map, problem, ears);
         if flips == 0 {
             return Ok(Extension {
                 map,
@@ -72,7 +73,7 @@ pub(crate) fn extend(
                 variant,
             });
         }
-        let mut h = harmonic(problem, boundary)?;
+        let mut h = harmonic(problem, boundary, ears)?;
         h.flipped_before = flips;
         if h.flipped_faces >= flips {
             h.map = map;
@@ -82,15 +83,58 @@ pub(crate) fn extend(
         }
         return Ok(h);
     }
-    harmonic(problem, boundary)
+    harmonic(problem, boundary, ears)
 }
 
-fn harmonic(problem: &DiskProblem<'_>, boundary: &[Complex64]) -> Result<Extension, DiskError> {
+/// Faces with non-positive image area, not counting the `ears` (see [`straight_ears`]).
+pub(crate) fn count_folds(map: &[Complex64], problem: &DiskProblem<'_>, ears: &[bool]) -> usize {
+    count_flipped_where(problem.mesh(), map, |f| !ears[f])
+}
+
+/// Faces whose three vertices are consecutive on the boundary loop with a middle vertex of
+/// target curvature exactly 0 (inside a straight side of a rectangle or polygon): their
+/// image is a segment by construction — degenerate, not folded, and no interior operator
+/// changes it.
+pub(crate) fn straight_ears(problem: &DiskProblem<'_>, kappa: &[f64]) -> Vec<bool> {
+    let partition = problem.partition();
+    let lp = &partition.boundary;
+    let m = lp.len();
+    problem
+        .mesh()
+        .faces()
+        .iter()
+        .map(|t| {
+            t.iter().all(|&v| !partition.is_interior[v as usize])
+                && t.iter().any(|&b| {
+                    let k = partition.local[b as usize] as usize;
+                    let (a, c) = (lp[(k + m - 1) % m], lp[(k + 1) % m]);
+                    kappa[k] == 0.0 && t.contains(&a) && t.contains(&c)
+                })
+        })
+        .collect()
+}
+
+fn harmonic(
+    problem: &DiskProblem<'_>,
+    boundary: &[Complex64],
+    ears: &[bool],
+) -> Result<Extension, DiskError> {
+    let map = problem.harmonic_extension(boundary);
+    if count_folds(&map, problem, ears) == 0 {
+        return Ok(Extension {
+            map,
+            flipped_faces: 0,
+            flipped_before: 0,
+            operator: InteriorOperator::Cotan,
+            variant: FlattenInterior::Harmonic,
+        });
+    }
     let g = problem.guarded_extension(boundary)?;
+    let flipped_faces = count_folds(&g.map, problem, ears);
     Ok(Extension {
+        flipped_before: count_folds(&problem.harmonic_extension(boundary), problem, ears),
         map: g.map,
-        flipped_faces: g.flipped_faces,
-        flipped_before: g.flipped_faces_before,
+        flipped_faces,
         operator: g.operator,
         variant: FlattenInterior::Harmonic,
     })

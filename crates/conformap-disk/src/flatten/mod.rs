@@ -31,7 +31,7 @@ pub use report::{FlattenReport, FlattenTimings, Flattening};
 pub use spec::{parse_boundary_values, BoundarySpec};
 pub use targets::{CLEAR_CORNER_RAD, CORNER_SEPARATION, TURNING_SUM_TOL};
 
-use crate::laplacian_choice::count_flipped;
+use crate::laplacian_choice::count_flipped_where;
 use crate::{DiskError, DiskProblem, ProblemOptions};
 
 /// The boundary a flattening targets. Vertices are 0-based indices of the input mesh;
@@ -173,11 +173,16 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
     let t0 = Instant::now();
     let filled = fill(mesh)?;
     let work = filled.as_ref().map_or(mesh, |f| &f.mesh);
-    let problem = DiskProblem::with_options(work, &options.problem)?;
+    // the angle sums need only the geometry: computed beside the assembly and factorization
+    let (problem, sums) = rayon::join(
+        || DiskProblem::with_options(work, &options.problem),
+        || boundary::angle_sums(work),
+    );
+    let problem = problem?;
     let setup = ms(t0);
 
     let t = Instant::now();
-    let curv = boundary::Curvatures::new(work, problem.partition());
+    let curv = boundary::Curvatures::new(&sums, problem.partition());
     let data = targets::boundary_data(
         &problem,
         &curv,
@@ -191,7 +196,7 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
     let lengths = curve::edge_lengths(work, lp);
     let target = curve::scaled_lengths(&lengths, &data.u_b);
     let tangents = curve::tangents(&data.kappa, data.start);
-    let closed = curve::close_curve(&target, &lengths, &tangents, data.start);
+    let closed = curve::close_curve(&target, &target, &tangents, data.start);
     let points = match options.boundary {
         FlattenBoundary::Circle => on_circle(&closed.lengths, data.start),
         _ => closed.points.clone(),
@@ -199,7 +204,14 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
     let curve_ms = ms(t);
 
     let t = Instant::now();
-    let ext = extend::extend(&problem, &points, options.interior, data.pinned.as_ref())?;
+    let ears = extend::straight_ears(&problem, &data.kappa);
+    let ext = extend::extend(
+        &problem,
+        &points,
+        options.interior,
+        data.pinned.as_ref(),
+        &ears,
+    )?;
     let mut map = ext.map;
     map.truncate(mesh.num_vertices());
     if let Some(v) = map
@@ -231,7 +243,9 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
         stage: "flatten metrics",
     })?;
     let touches = curve::boundary_touches(mesh, &map);
-    let flipped = count_flipped(mesh, &map).0;
+    // the ears are faces of `work`; the input's faces come first in it
+    let flipped = count_flipped_where(mesh, &map, |f| !ears[f]);
+    let straight_side_ears = ears[..mesh.num_faces()].iter().filter(|&&e| e).count();
     let metrics_ms = ms(t);
 
     let timings = FlattenTimings {
@@ -264,6 +278,7 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
         aspect_dilatation: aspect.and_then(|a| a.2),
         boundary_touches: touches,
         overlap_free: flipped == 0 && touches == 0,
+        straight_side_ears,
         filled_holes: filled.as_ref().map_or(0, |f| f.filled_loops.len()),
         laplacian: problem.laplacian_note(),
         metrics,

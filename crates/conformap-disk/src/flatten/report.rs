@@ -59,9 +59,15 @@ pub struct FlattenReport {
     /// Pairs of non-adjacent boundary edges of the map that cross or touch (0: every
     /// boundary curve of the image is simple).
     pub boundary_touches: usize,
-    /// No flipped face and no boundary touching itself: for a disk, the map is then one to
-    /// one (an overlap-free image).
+    /// No face with non-positive image area (besides the [`Self::straight_side_ears`]) and
+    /// no boundary touching itself: for a disk, the map is then one to one (an
+    /// overlap-free image).
     pub overlap_free: bool,
+    /// Faces of three consecutive boundary vertices inside one straight side of a rectangle
+    /// or polygon: their image is a segment of the side by construction (degenerate, never
+    /// flipped; `metrics.degenerate_faces` counts them). Refine such ears away for a map
+    /// without degenerate faces.
+    pub straight_side_ears: usize,
     /// Holes filled with centroid fans before flattening (several boundary loops: the
     /// longest loop is the outer boundary; the holes take the shape the map gives them).
     pub filled_holes: usize,
