@@ -112,4 +112,81 @@ pub enum DiskError {
         /// The sweep (0 = the first disk map).
         sweep: usize,
     },
+    /// A boundary target names a vertex that does not exist.
+    #[error(
+        "vertex {vertex} does not exist (the mesh has {vertices} vertices); hint: vertices \
+         are 0-based"
+    )]
+    VertexOutOfRange {
+        /// The vertex as given.
+        vertex: u32,
+        /// Number of vertices of the mesh.
+        vertices: usize,
+    },
+    /// A boundary target names an interior vertex (or, with several loops, a vertex off the
+    /// outer loop).
+    #[error(
+        "vertex {vertex} is not on the boundary loop being flattened; hint: list vertices \
+         of the (longest) boundary loop, 0-based (`conformap info` lists the loops)"
+    )]
+    NotOnBoundary {
+        /// The vertex (0-based).
+        vertex: u32,
+    },
+    /// A `scale` or `angles` target leaves out a boundary vertex.
+    #[error(
+        "boundary vertex {vertex} has no value; hint: `scale` and `angles` need one line \
+         per vertex of the boundary loop"
+    )]
+    MissingBoundaryValue {
+        /// The first boundary vertex without a value (0-based).
+        vertex: u32,
+    },
+    /// A boundary value is NaN or infinite.
+    #[error("the value of boundary vertex {vertex} is not finite; hint: give a finite number")]
+    NonFiniteBoundaryValue {
+        /// The vertex (0-based).
+        vertex: u32,
+    },
+    /// The corners of a rectangle or polygon are unusable.
+    #[error(
+        "bad corners: {reason}; hint: give distinct boundary vertices in the order of the \
+         boundary loop (the surface on the left)"
+    )]
+    BadCorners {
+        /// What is wrong.
+        reason: String,
+    },
+    /// The exterior angles of an `angles` or `polygon` target do not sum to 360°.
+    #[error(
+        "the exterior angles sum to {sum_deg:.6}°, but a closed boundary loop turns by \
+         360°; hint: convex corners count positive, reflex ones negative (a rectangle: \
+         four times 90)"
+    )]
+    TurningSum {
+        /// The sum as given, degrees.
+        sum_deg: f64,
+    },
+    /// A boundary file has a malformed line.
+    #[error(
+        "{file}:{line}: {reason}; hint: each line is `<0-based vertex> <value>` (angles in \
+         degrees); `#` starts a comment line"
+    )]
+    BoundaryFile {
+        /// The file as named by the caller.
+        file: String,
+        /// The 1-based line.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An unknown `--boundary` spelling.
+    #[error(
+        "unknown boundary {spelling:?}; hint: free, circle, rectangle, scale:FILE, \
+         angles:FILE or polygon:FILE"
+    )]
+    UnknownBoundary {
+        /// The spelling as given.
+        spelling: String,
+    },
 }

@@ -238,6 +238,25 @@ pub(crate) fn count_flipped(mesh: &TriMesh, f: &[Complex64]) -> (usize, Option<u
     (count, first)
 }
 
+/// [`count_flipped`]'s number over the faces `keep` accepts.
+pub(crate) fn count_flipped_where(
+    mesh: &TriMesh,
+    f: &[Complex64],
+    keep: impl Fn(usize) -> bool,
+) -> usize {
+    let mut count = 0;
+    for (k, t) in mesh.faces().iter().enumerate() {
+        if !keep(k) {
+            continue;
+        }
+        let (a, b, c) = (f[t[0] as usize], f[t[1] as usize], f[t[2] as usize]);
+        if !(((b - a).conj() * (c - a)).im > 0.0) {
+            count += 1;
+        }
+    }
+    count
+}
+
 /// The intrinsic Delaunay operator, built and factored on first use.
 type IntrinsicBuilt = (IntrinsicStats, LaplacianBlocks, Cholesky);
 

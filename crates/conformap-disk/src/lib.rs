@@ -40,6 +40,7 @@ mod angles;
 mod ccem;
 mod cem;
 mod error;
+mod flatten;
 mod harmonic;
 pub mod initial;
 mod koebe;
@@ -60,6 +61,11 @@ pub use ccem::{
 };
 pub use cem::{cem, interior_residual, CemOptions};
 pub use error::DiskError;
+pub use flatten::{
+    flatten, flatten_peak_bytes, parse_boundary_values, BoundarySpec, FlattenBoundary,
+    FlattenInterior, FlattenOptions, FlattenReport, FlattenTimings, Flattening, AXIS_SNAP_RAD,
+    CLEAR_CORNER_RAD, CORNER_SEPARATION, TURNING_SUM_TOL,
+};
 pub use harmonic::harmonic_arc_length;
 pub use koebe::{
     koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
