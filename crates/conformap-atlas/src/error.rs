@@ -28,6 +28,12 @@ pub enum AtlasError {
         /// The solver's message.
         why: String,
     },
+    /// The surface could not be cut into a disk (a cut that does not leave a manifold).
+    #[error("the surface could not be cut into a disk: {0}")]
+    Mesh(String),
+    /// A cut chart could not be flattened.
+    #[error("a chart could not be flattened: {0}")]
+    Flatten(String),
     /// The margins alone do not fit: too many charts for the resolution.
     #[error(
         "{charts} charts with a margin of {margin} texels do not fit in a {resolution}² \

@@ -43,25 +43,44 @@ impl ConeMetric {
     pub fn new(mesh: &TriMesh) -> Result<Self, AtlasError> {
         let n = mesh.num_vertices();
         let loops = mesh.boundary_loops();
-        let pinned: Vec<u32> = if loops.is_empty() {
+        if loops.is_empty() {
             // the vertex pinned is the one of highest index: any vertex would do (u is
             // defined up to a constant), a fixed one keeps results deterministic
-            vec![(n - 1) as u32]
+            Self::build(mesh, &[(n - 1) as u32], true)
         } else {
-            loops.iter().flatten().copied().collect()
-        };
-        let part = Partition::new(n, &pinned);
+            let pinned: Vec<u32> = loops.iter().flatten().copied().collect();
+            Self::build(mesh, &pinned, false)
+        }
+    }
+
+    /// The cone metric with `u = 0` on the `pinned` vertices (besides any boundary): the
+    /// handle cut of a surface of genus ≥ 1, which then takes up whatever curvature the
+    /// cones leave, as the boundary of a disk does.
+    ///
+    /// # Errors
+    /// As [`ConeMetric::new`].
+    pub fn with_pinned(mesh: &TriMesh, pinned: &[u32]) -> Result<Self, AtlasError> {
+        let mut all: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
+        all.extend_from_slice(pinned);
+        all.sort_unstable();
+        all.dedup();
+        Self::build(mesh, &all, false)
+    }
+
+    fn build(mesh: &TriMesh, pinned: &[u32], closed: bool) -> Result<Self, AtlasError> {
+        let n = mesh.num_vertices();
+        let part = Partition::new(n, pinned);
         let l = cotan_laplacian(mesh);
         let blocks = LaplacianBlocks::new(&l, &part);
         let chol = Cholesky::factor(&blocks.ii)
             .map_err(|e| AtlasError::Factorization { why: e.to_string() })?;
-        let curvature = angle_defects(mesh, &part);
+        let curvature = angle_defects(mesh);
         let mut metric = Self {
             part,
             chol,
             curvature,
             u_k: Vec::new(),
-            closed: loops.is_empty(),
+            closed,
             faces: mesh.faces().to_vec(),
             positions: mesh.positions().to_vec(),
             length: conformap_operators::surface_area(mesh).sqrt(),
@@ -163,10 +182,8 @@ pub(crate) fn sd(x: &[f64]) -> f64 {
     (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt()
 }
 
-/// Angle defects: `2π − Σ angles` at interior vertices, `π − Σ angles` on the boundary
-/// (boundary = the pinned set only when the surface has a boundary; on a closed surface
-/// every vertex is interior).
-fn angle_defects(mesh: &TriMesh, part: &Partition) -> Vec<f64> {
+/// Angle defects: `2π − Σ angles` at interior vertices, `π − Σ angles` on the boundary.
+fn angle_defects(mesh: &TriMesh) -> Vec<f64> {
     let n = mesh.num_vertices();
     let mut sum = vec![0.0; n];
     for (f, a) in mesh.faces().iter().zip(corner_angles(mesh)) {
@@ -174,10 +191,13 @@ fn angle_defects(mesh: &TriMesh, part: &Partition) -> Vec<f64> {
             sum[f[k] as usize] += a[k];
         }
     }
-    let on_boundary = |v: usize| !mesh.boundary_loops().is_empty() && !part.is_interior[v];
+    let mut on_boundary = vec![false; n];
+    for &v in mesh.boundary_loops().iter().flatten() {
+        on_boundary[v as usize] = true;
+    }
     (0..n)
         .map(|v| {
-            let full = if on_boundary(v) {
+            let full = if on_boundary[v] {
                 std::f64::consts::PI
             } else {
                 std::f64::consts::TAU

@@ -1,0 +1,79 @@
+//! Charts of the closed meshes of `../shared/meshes` with 8 cones (cut through the cones
+//! and the handles, flattened with the cone metric's boundary scale, packed into the unit
+//! square), against boundary first flattening's command-line tool on the same machine.
+//!
+//! ```sh
+//! cargo run --release -p conformap-atlas --example atlas_table [-- COUNT MESH...]
+//! ```
+
+use std::time::Instant;
+
+use conformap_atlas::{chart_closed, chart_quality, pack_charts, ConeOptions, PackOptions};
+
+/// BFF at 8 cones: (mesh, area spread, mean angle distortion °, packing, seconds).
+const BFF: [(&str, f64, f64, f64, f64); 7] = [
+    ("spot", 1.01, 2.15, 0.65, 0.07),
+    ("armadillo", 2.51, 1.47, 0.40, 1.87),
+    ("brain", 0.69, 1.21, 0.51, 1.91),
+    ("david_head", 0.57, 0.84, 0.41, 0.45),
+    ("kitten_53k", 0.41, 0.30, 0.33, 2.53),
+    ("eight", 0.27, 0.66, 0.21, 0.10),
+    ("fertility", 0.40, 1.34, 0.26, 0.19),
+];
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let count: usize = args.first().map(|s| s.parse()).transpose()?.unwrap_or(8);
+    let shared = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/meshes");
+    let meshes: Vec<String> = if args.len() > 1 {
+        args[1..].to_vec()
+    } else {
+        BFF.iter()
+            .map(|b| format!("{shared}/{}.obj", b.0))
+            .collect()
+    };
+    println!("| mesh | genus | spread (BFF) | angle ° (BFF) | flipped | seam log ratio mean / max | packing (BFF) | cut / √area | ms (BFF s) |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for path in meshes {
+        let mesh = conformap_io::read_mesh(&path)?.mesh;
+        let name = std::path::Path::new(&path)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let t = Instant::now();
+        let chart = chart_closed(&mesh, count, &ConeOptions::default())?;
+        let pts: Vec<[f64; 2]> = chart.uv.iter().map(|z| [z.re, z.im]).collect();
+        let packing = pack_charts(&[pts], &PackOptions::default())?;
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        let q = chart_quality(&mesh, &chart.cut, &chart.uv);
+        let area: f64 = mesh
+            .faces()
+            .iter()
+            .enumerate()
+            .map(|(f, _)| {
+                let c = chart.cut.mesh.faces()[f].map(|v| chart.uv[v as usize]);
+                let (a, b) = (c[1] - c[0], c[2] - c[0]);
+                0.5 * (a.re * b.im - a.im * b.re)
+            })
+            .sum();
+        let area3 = conformap_operators::surface_area(&mesh);
+        let bff = BFF.iter().find(|b| b.0 == name);
+        let f = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.2}"));
+        println!(
+            "| {name} | {} | {:.3} ({}) | {:.2} ({}) | {} | {:.1e} / {:.1e} | {:.2} ({}) | {:.2} | {ms:.0} ({}) |",
+            mesh.genus().unwrap_or(-1),
+            q.area_spread,
+            f(bff.map(|b| b.1)),
+            q.angle_mean_deg,
+            f(bff.map(|b| b.2)),
+            q.flipped,
+            q.seam_log_ratio_mean,
+            q.seam_log_ratio_max,
+            packing.efficiency_of(&[area]),
+            f(bff.map(|b| b.3)),
+            chart.cut_length / area3.sqrt(),
+            f(bff.map(|b| b.4)),
+        );
+    }
+    Ok(())
+}
