@@ -143,32 +143,33 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
         cols.column(v);
     }
     let a: Vec<&[f64]> = vertices.iter().map(|v| cols.cache[v].as_slice()).collect();
-    let closed = cols.metric.closed();
-    let m = if closed { c + 1 } else { c };
-    let mut sys = vec![0.0; m * (m + 1)];
+    // the normal equations' Gram matrix and right-hand side, once
+    let mut gram = vec![0.0; c * c];
+    let mut rhs = vec![0.0; c];
     for i in 0..c {
         for j in 0..=i {
             let d: f64 = a[i].iter().zip(a[j]).map(|(x, y)| x * y).sum();
-            sys[i * (m + 1) + j] = d;
-            sys[j * (m + 1) + i] = d;
+            gram[i * c + j] = d;
+            gram[j * c + i] = d;
         }
-        sys[i * (m + 1) + m] = a[i].iter().zip(&cols.rhs).map(|(x, y)| x * y).sum();
+        rhs[i] = a[i].iter().zip(&cols.rhs).map(|(x, y)| x * y).sum();
     }
-    if closed {
-        for i in 0..c {
-            sys[i * (m + 1) + c] = 1.0;
-            sys[c * (m + 1) + i] = 1.0;
+    let total = cols.metric.closed().then(|| cols.metric.total_defect());
+    // active set: a cone whose best defect leaves no positive angle is held at the bound
+    // and the others solved again (the spread is convex in the defects)
+    let bound = std::f64::consts::TAU - MIN_CONE_ANGLE;
+    let mut held: Vec<bool> = vec![false; c];
+    let k = loop {
+        let k = constrained_least_squares(&gram, &rhs, c, &held, bound, total)?;
+        let worst = (0..c)
+            .filter(|&i| !held[i] && k[i] > bound)
+            .max_by(|&x, &y| k[x].total_cmp(&k[y]));
+        match worst {
+            Some(i) if valid => held[i] = true,
+            _ => break k,
         }
-        sys[c * (m + 1) + m] = cols.metric.total_defect();
-    }
-    let k = solve_dense(sys, m)?;
-    let k = k[..c].to_vec();
-    if !k.iter().all(|d| d.is_finite())
-        || (valid
-            && !k
-                .iter()
-                .all(|&d| d < std::f64::consts::TAU - MIN_CONE_ANGLE))
-    {
+    };
+    if !k.iter().all(|d| d.is_finite()) {
         return None;
     }
     let n = cols.rhs.len();
@@ -176,6 +177,49 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
         .map(|f| (0..c).map(|i| k[i] * a[i][f]).sum::<f64>() - cols.rhs[f])
         .collect();
     Some((k, sd(&face)))
+}
+
+/// Minimizes `kᵀ G k − 2 bᵀ k` over the defects not `held` (those are at `bound`), with
+/// `Σ k = total` when given: the KKT system of the free defects and the multiplier.
+fn constrained_least_squares(
+    gram: &[f64],
+    rhs: &[f64],
+    c: usize,
+    held: &[bool],
+    bound: f64,
+    total: Option<f64>,
+) -> Option<Vec<f64>> {
+    let free: Vec<usize> = (0..c).filter(|&i| !held[i]).collect();
+    let f = free.len();
+    let m = if total.is_some() { f + 1 } else { f };
+    if m == 0 {
+        return Some(vec![bound; c]);
+    }
+    let mut sys = vec![0.0; m * (m + 1)];
+    for (r, &i) in free.iter().enumerate() {
+        for (q, &j) in free.iter().enumerate() {
+            sys[r * (m + 1) + q] = gram[i * c + j];
+        }
+        let fixed: f64 = (0..c)
+            .filter(|&j| held[j])
+            .map(|j| gram[i * c + j] * bound)
+            .sum();
+        sys[r * (m + 1) + m] = rhs[i] - fixed;
+    }
+    if let Some(t) = total {
+        for r in 0..f {
+            sys[r * (m + 1) + f] = 1.0;
+            sys[f * (m + 1) + r] = 1.0;
+        }
+        let fixed = held.iter().filter(|&&h| h).count() as f64 * bound;
+        sys[f * (m + 1) + m] = t - fixed;
+    }
+    let x = solve_dense(sys, m)?;
+    let mut k = vec![bound; c];
+    for (r, &i) in free.iter().enumerate() {
+        k[i] = x[r];
+    }
+    Some(k)
 }
 
 /// Gaussian elimination with partial pivoting on the augmented `m × (m+1)` row-major
