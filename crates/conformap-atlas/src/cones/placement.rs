@@ -18,7 +18,7 @@ use std::collections::HashMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::metric::{sd, ConeMetric};
+use super::metric::ConeMetric;
 
 /// The smallest cone angle a placement may give, radians: 1e-3 (below it the layout
 /// around the cone would need texel-sized wedges).
@@ -99,6 +99,10 @@ struct Columns<'a> {
     metric: &'a ConeMetric,
     cache: HashMap<u32, Vec<f64>>,
     rhs: Vec<f64>,
+    /// Dot products of two columns (smaller vertex first), and of a column with `rhs`:
+    /// each pair is summed over the faces once, however many sets it appears in.
+    dots: HashMap<(u32, u32), f64>,
+    rhs_dots: HashMap<u32, f64>,
 }
 
 impl<'a> Columns<'a> {
@@ -108,7 +112,39 @@ impl<'a> Columns<'a> {
             metric,
             cache: HashMap::new(),
             rhs,
+            dots: HashMap::new(),
+            rhs_dots: HashMap::new(),
         }
+    }
+
+    fn dot(&mut self, a: u32, b: u32) -> f64 {
+        let key = (a.min(b), a.max(b));
+        if let Some(&d) = self.dots.get(&key) {
+            return d;
+        }
+        self.column(a);
+        self.column(b);
+        let d = self.cache[&a]
+            .iter()
+            .zip(&self.cache[&b])
+            .map(|(x, y)| x * y)
+            .sum();
+        self.dots.insert(key, d);
+        d
+    }
+
+    fn rhs_dot(&mut self, a: u32) -> f64 {
+        if let Some(&d) = self.rhs_dots.get(&a) {
+            return d;
+        }
+        self.column(a);
+        let d = self.cache[&a]
+            .iter()
+            .zip(&self.rhs)
+            .map(|(x, y)| x * y)
+            .sum();
+        self.rhs_dots.insert(a, d);
+        d
     }
 
     fn column(&mut self, v: u32) -> &[f64] {
@@ -139,20 +175,16 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
     if vertices.iter().any(|&v| cols.metric.pinned(v)) {
         return None;
     }
-    for &v in vertices {
-        cols.column(v);
-    }
-    let a: Vec<&[f64]> = vertices.iter().map(|v| cols.cache[v].as_slice()).collect();
-    // the normal equations' Gram matrix and right-hand side, once
+    // the normal equations' Gram matrix and right-hand side (cached pairwise)
     let mut gram = vec![0.0; c * c];
     let mut rhs = vec![0.0; c];
     for i in 0..c {
         for j in 0..=i {
-            let d: f64 = a[i].iter().zip(a[j]).map(|(x, y)| x * y).sum();
+            let d = cols.dot(vertices[i], vertices[j]);
             gram[i * c + j] = d;
             gram[j * c + i] = d;
         }
-        rhs[i] = a[i].iter().zip(&cols.rhs).map(|(x, y)| x * y).sum();
+        rhs[i] = cols.rhs_dot(vertices[i]);
     }
     let total = cols.metric.closed().then(|| cols.metric.total_defect());
     // active set: a cone whose best defect leaves no positive angle is held at the bound
@@ -172,11 +204,18 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
     if !k.iter().all(|d| d.is_finite()) {
         return None;
     }
-    let n = cols.rhs.len();
-    let face: Vec<f64> = (0..n)
-        .map(|f| (0..c).map(|i| k[i] * a[i][f]).sum::<f64>() - cols.rhs[f])
-        .collect();
-    Some((k, sd(&face)))
+    // the columns and the right-hand side have mean 0 over the faces, so the spread is
+    // ‖A k − R‖ / √F = √(kᵀGk − 2kᵀb + RᵀR) / √F, with no pass over the faces
+    let n = cols.rhs.len().max(1) as f64;
+    let rr: f64 = cols.rhs.iter().map(|x| x * x).sum();
+    let mut q = rr;
+    for i in 0..c {
+        q -= 2.0 * k[i] * rhs[i];
+        for j in 0..c {
+            q += k[i] * gram[i * c + j] * k[j];
+        }
+    }
+    Some((k, (q.max(0.0) / n).sqrt()))
 }
 
 /// Minimizes `kᵀ G k − 2 bᵀ k` over the defects not `held` (those are at `bound`), with
