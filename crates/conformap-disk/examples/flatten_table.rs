@@ -5,7 +5,8 @@
 //! `cargo run --release -p conformap-disk --example flatten_table -- [--conjugate] [--rectangle] [--reps N] MESH.obj...`
 //!
 //! `--conjugate` extends `y` as the conjugate of `x`; `--rectangle` maps onto a rectangle with
-//! automatic corners instead of the free boundary.
+//! automatic corners instead of the free boundary; `--height-field N` runs a generated height
+//! field of `N × N` cells (`2 N²` faces: `--height-field 708` is 1M faces) instead of meshes.
 //!
 //! Without meshes it runs every mesh with a boundary in the shared mesh directory
 //! (`$CONFORMAP_SHARED_MESHES`, else `/work/shared/meshes`). `flatten` is timed as the whole
@@ -21,7 +22,7 @@ use conformap_disk::{
 };
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use conformap_testkit::read_plain_obj;
+use conformap_testkit::{grid_faces, read_plain_obj};
 
 const WITH_BOUNDARY: [&str; 10] = [
     "hand",
@@ -35,6 +36,20 @@ const WITH_BOUNDARY: [&str; 10] = [
     "sophie_annulus",
     "maze",
 ];
+
+/// A height field over the unit square, `n × n` cells (`2 n²` faces): smooth bumps.
+fn height_field(n: usize) -> Result<TriMesh, Box<dyn std::error::Error>> {
+    let mut p = Vec::with_capacity((n + 1) * (n + 1));
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            let z = 0.15 * (6.0 * x).sin() * (4.0 * y).cos()
+                + 0.1 * (-20.0 * ((x - 0.6).powi(2) + (y - 0.3).powi(2))).exp();
+            p.push([x, y, z]);
+        }
+    }
+    Ok(TriMesh::try_new(p, grid_faces(n, n))?)
+}
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -63,7 +78,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         reps = args.get(i + 1).and_then(|s| s.parse().ok()).unwrap_or(3);
         args.drain(i..(i + 2).min(args.len()));
     }
-    let paths: Vec<PathBuf> = if args.is_empty() {
+    let mut field = None;
+    if let Some(i) = args.iter().position(|a| a == "--height-field") {
+        field = args.get(i + 1).and_then(|s| s.parse::<usize>().ok());
+        args.drain(i..(i + 2).min(args.len()));
+    }
+    let paths: Vec<PathBuf> = if field.is_some() {
+        vec![PathBuf::from("height_field")]
+    } else if args.is_empty() {
         let dir = std::env::var("CONFORMAP_SHARED_MESHES")
             .unwrap_or_else(|_| "/work/shared/meshes".into());
         WITH_BOUNDARY
@@ -94,7 +116,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let name = path
             .file_stem()
             .map_or("?".into(), |s| s.to_string_lossy().into_owned());
-        let mesh = match read_plain_obj(&path) {
+        let read = match field {
+            Some(n) => height_field(n),
+            None => read_plain_obj(&path).map_err(Into::into),
+        };
+        let mesh = match read {
             Ok(m) => m,
             Err(e) => {
                 println!("| {name} | skipped: {e} |");

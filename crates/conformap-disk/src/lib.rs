@@ -1,15 +1,18 @@
 //! Disk conformal maps for conformap: Angenent initial map, harmonic extension, CEM and
-//! CCEM.
+//! CCEM, and boundary first flattening.
 //!
-//! Depends on `conformap-mesh` (validated meshes) and `conformap-operators` (Laplacian,
-//! factorizations); never touches files, spheres or 1-forms. Entry point:
+//! Depends on `conformap-mesh` (validated meshes), `conformap-operators` (Laplacian,
+//! factorizations) and `conformap-metrics` (the flattening's report); never touches files,
+//! spheres or 1-forms. Entry point:
 //! [`DiskProblem::new`] checks the topology, assembles and factors once; the methods
 //! ([`harmonic_arc_length`], [`cem`], [`ccem`]) then reuse that factorization.
 //! [`compute_disk_map`] does both for a [`DiskMethod`]; the default, CCEM with BFGS
 //! ([`DiskMethod::CcemQn`]), gives the most conformal map (lowest `E_C`) of the four.
 //! [`koebe`] maps a genus-0 mesh with several boundary loops onto the unit disk with
 //! circular holes (CEM §3.3, Algorithm 2: Koebe's iteration, then the circle-domain map of
-//! least conformal energy).
+//! least conformal energy). [`flatten`] is boundary first flattening (Sawhney & Crane 2017):
+//! a free boundary that keeps the boundary's lengths, or a target boundary (given scale
+//! factors or angles, a circle, a rectangle, a polygon), on the same factorizations.
 //!
 //! # Example
 //! ```

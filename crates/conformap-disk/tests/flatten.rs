@@ -172,6 +172,46 @@ fn free_boundary_on_fixtures_folds_nothing_and_keeps_boundary_lengths() {
 }
 
 #[test]
+fn holes_are_filled_and_the_conjugate_interior_agrees_with_the_harmonic_one() {
+    let tunnel = fixture_mesh("halftunnel.obj");
+    let out = flatten(&tunnel, &FlattenOptions::DEFAULT).expect("halftunnel");
+    assert_eq!(out.report.filled_holes, 2);
+    assert_eq!(out.map.len(), tunnel.num_vertices());
+    assert_eq!(
+        out.boundary_scale.len(),
+        48,
+        "the longest loop is the outer boundary"
+    );
+    let mesh = fixture_mesh("spothead.obj");
+    let h = flatten(&mesh, &FlattenOptions::DEFAULT).expect("harmonic");
+    let c = flatten(
+        &mesh,
+        &FlattenOptions::DEFAULT.with_interior(FlattenInterior::Conjugate),
+    )
+    .expect("conjugate");
+    assert_eq!(c.report.interior, "conjugate");
+    assert_eq!(c.report.metrics.flipped_faces, 0);
+    let (hm, cm) = (&h.report.metrics, &c.report.metrics);
+    assert!((hm.angle_distortion_deg.mean - cm.angle_distortion_deg.mean).abs() < 0.1);
+    assert!((hm.area_distortion_log.sd / cm.area_distortion_log.sd - 1.0).abs() < 0.02);
+    // the report serializes with the fields the application layer reads
+    let json = serde_json::to_value(&h.report).expect("serializable");
+    for key in [
+        "boundary",
+        "corners",
+        "closure_residual",
+        "boundary_u_min",
+        "overlap_free",
+        "metrics",
+        "timings_ms",
+    ] {
+        assert!(json.get(key).is_some(), "{key}");
+    }
+    assert_eq!(json["boundary"], "free");
+    assert_eq!(json["metrics"]["flipped_faces"], 0);
+}
+
+#[test]
 fn cut_cylinders_map_onto_their_development() {
     for (r, h, n, rings) in [
         (1.0, 2.0, 6, 3),

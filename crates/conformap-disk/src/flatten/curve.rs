@@ -205,6 +205,22 @@ mod tests {
     }
 
     #[test]
+    fn a_boundary_pulled_across_the_disk_touches_itself() {
+        let mesh = conformap_testkit::flat_disk(3, 6);
+        let mut map: Vec<Complex64> = mesh
+            .positions()
+            .iter()
+            .map(|p| Complex64::new(p[0], p[1]))
+            .collect();
+        assert_eq!(boundary_touches(&mesh, &map), 0);
+        let lp = &mesh.boundary_loops()[0];
+        // one boundary vertex dragged to the far side: its two edges cross the loop
+        let v = lp[0] as usize;
+        map[v] = -1.5 * map[v];
+        assert!(boundary_touches(&mesh, &map) >= 2);
+    }
+
+    #[test]
     fn crossing_segments_are_found() {
         let z = Complex64::new;
         assert!(segments_meet(z(0., 0.), z(1., 1.), z(0., 1.), z(1., 0.)));

@@ -120,7 +120,8 @@ fn harmonic(
     ears: &[bool],
 ) -> Result<Extension, DiskError> {
     let map = problem.harmonic_extension(boundary);
-    if count_folds(&map, problem, ears) == 0 {
+    let before = count_folds(&map, problem, ears);
+    if before == 0 {
         return Ok(Extension {
             map,
             flipped_faces: 0,
@@ -130,11 +131,10 @@ fn harmonic(
         });
     }
     let g = problem.guarded_extension(boundary)?;
-    let flipped_faces = count_folds(&g.map, problem, ears);
     Ok(Extension {
-        flipped_before: count_folds(&problem.harmonic_extension(boundary), problem, ears),
+        flipped_faces: count_folds(&g.map, problem, ears),
         map: g.map,
-        flipped_faces,
+        flipped_before: before,
         operator: g.operator,
         variant: FlattenInterior::Harmonic,
     })

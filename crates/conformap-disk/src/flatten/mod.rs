@@ -121,6 +121,13 @@ impl FlattenOptions {
         self
     }
 
+    /// Sets [`Self::circle_iterations`].
+    #[must_use]
+    pub fn with_circle_iterations(mut self, iterations: usize) -> Self {
+        self.circle_iterations = iterations;
+        self
+    }
+
     /// Sets [`Self::problem`].
     #[must_use]
     pub fn with_problem(mut self, problem: ProblemOptions) -> Self {

@@ -111,6 +111,15 @@ impl BoundarySpec {
     }
 }
 
+impl std::str::FromStr for BoundarySpec {
+    type Err = DiskError;
+
+    /// [`BoundarySpec::parse`].
+    fn from_str(s: &str) -> Result<Self, DiskError> {
+        Self::parse(s)
+    }
+}
+
 /// Parses a boundary file: one `<0-based vertex> <value>` per line, blank lines and lines
 /// starting with `#` skipped; `degrees` converts the values to radians. `source` names the
 /// file in errors.

@@ -15,8 +15,13 @@ use crate::{DiskError, DiskProblem};
 /// the corners.
 pub const TURNING_SUM_TOL: f64 = 1e-6;
 
-/// A corner found by [`auto_corners`] must turn by at least this much (radians); below it
-/// the boundary has no four clear corners and they are placed by arc length.
+/// The automatic corners of a rectangle: the sharpest boundary vertex (largest geodesic
+/// curvature `κ = π − Σθ`, the first in loop order on ties) is the first corner; then, three
+/// times, the sharpest vertex at least [`CORNER_SEPARATION`] of the perimeter (by 3D arc
+/// length) from every corner chosen so far, as long as it turns by at least this much
+/// (radians). Below it the boundary has no four clear corners, and the corners are instead
+/// the vertices nearest to a quarter, a half and three quarters of the perimeter after the
+/// sharpest vertex. The corners are then taken in boundary order from the first.
 pub const CLEAR_CORNER_RAD: f64 = std::f64::consts::PI / 8.0;
 
 /// The least arc-length distance between two automatic corners, as a share of the
