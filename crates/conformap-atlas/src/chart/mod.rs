@@ -79,7 +79,9 @@ pub fn chart_closed(
         .flatten()
         .map(|&w| (w, set.u[cut.original[w as usize] as usize]))
         .collect();
-    let options = FlattenOptions::DEFAULT.with_boundary(FlattenBoundary::Scale(scale));
+    let options = FlattenOptions::DEFAULT
+        .with_boundary(FlattenBoundary::Scale(scale))
+        .with_equal_lengths(seam_pairs(mesh, &cut));
     let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
     Ok(Chart {
         cut,
@@ -88,6 +90,20 @@ pub fn chart_closed(
         cut_length: handle_length + added,
         closure_residual: flat.closure_residual,
     })
+}
+
+/// The two sides of every seam, as boundary edges of the cut mesh named by their first
+/// vertex along the boundary (a boundary half-edge of a face runs with the loop).
+fn seam_pairs(mesh: &TriMesh, cut: &CutMesh) -> Vec<(u32, u32)> {
+    let start = |h: usize| cut.mesh.faces()[h / 3][h % 3];
+    let end = |h: usize| cut.mesh.faces()[h / 3][(h + 1) % 3];
+    mesh.opposite_halfedges()
+        .iter()
+        .enumerate()
+        .filter(|&(h, &o)| o != conformap_mesh::NO_HALFEDGE && h < o as usize)
+        .filter(|&(h, &o)| start(h) != end(o as usize) || end(h) != start(o as usize))
+        .map(|(h, &o)| (start(h), start(o as usize)))
+        .collect()
 }
 
 fn cut_length(mesh: &TriMesh, edges: &conformap_mesh::EdgeIndex, on_cut: &[bool]) -> f64 {

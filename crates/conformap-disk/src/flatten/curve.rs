@@ -85,30 +85,58 @@ pub(crate) struct ClosedCurve {
 
 /// Closes and lays out the curve of lengths `target` (`weights` = the mass `l_k`) and unit
 /// tangents `t`, starting at vertex `start`.
+///
+/// `groups[k]` names the group of edge `k`: edges of one group change their lengths by the
+/// same relative amount (the two sides of a seam of a cut surface stay equal), so the
+/// closing solves for one change per group: `Δl_k = w_k s_g` minimizing `Σ_g W_g s_g²`
+/// (`W_g = Σ_{k∈g} w_k`) subject to `Σ_g s_g a_g = −gap` (`a_g = Σ_{k∈g} w_k T_k`), a 2 × 2
+/// system `M μ = gap` with `M = Σ_g a_g a_gᵀ / W_g` and `s_g = −a_g·μ / W_g`. With every
+/// edge its own group this is the plain closing.
 pub(crate) fn close_curve(
     target: &[f64],
     weights: &[f64],
     t: &[Complex64],
     start: usize,
+    groups: &[u32],
 ) -> ClosedCurve {
     let sum = |l: &[f64]| -> Complex64 { l.iter().zip(t).map(|(&a, &d)| d * a).sum() };
     let perimeter: f64 = target.iter().sum();
     let gap = sum(target);
-    // T N Tᵀ, symmetric 2 × 2
+    let ng = groups.iter().map(|&g| g as usize + 1).max().unwrap_or(0);
+    let mut a_g = vec![Complex64::new(0.0, 0.0); ng];
+    let mut w_g = vec![0.0; ng];
+    for ((&g, &w), d) in groups.iter().zip(weights).zip(t) {
+        a_g[g as usize] += d * w;
+        w_g[g as usize] += w;
+    }
+    // M, symmetric 2 × 2
     let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-    for (d, &w) in t.iter().zip(weights) {
-        a += w * d.re * d.re;
-        b += w * d.re * d.im;
-        c += w * d.im * d.im;
+    for (d, &w) in a_g.iter().zip(&w_g) {
+        if w > 0.0 {
+            a += d.re * d.re / w;
+            b += d.re * d.im / w;
+            c += d.im * d.im / w;
+        }
     }
     let det = a * c - b * b;
     let lengths: Vec<f64> = if det > f64::EPSILON * (a + c).powi(2) {
         let lx = (c * gap.re - b * gap.im) / det;
         let ly = (a * gap.im - b * gap.re) / det;
+        let s: Vec<f64> = a_g
+            .iter()
+            .zip(&w_g)
+            .map(|(d, &w)| {
+                if w > 0.0 {
+                    (d.re * lx + d.im * ly) / w
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         target
             .iter()
-            .zip(weights.iter().zip(t))
-            .map(|(&l, (&w, d))| l - w * (d.re * lx + d.im * ly))
+            .zip(weights.iter().zip(groups))
+            .map(|(&l, (&w, &g))| l - w * s[g as usize])
             .collect()
     } else {
         // all tangents parallel: nothing closes it; keep the lengths, report the gap
@@ -195,13 +223,28 @@ mod tests {
         let pi2 = std::f64::consts::FRAC_PI_2;
         let kappa = [pi2; 4];
         let t = tangents(&kappa, 0);
-        let c = close_curve(&[1.0, 1.0, 1.0, 1.0], &[1.0; 4], &t, 0);
+        let c = close_curve(&[1.0, 1.0, 1.0, 1.0], &[1.0; 4], &t, 0, &[0, 1, 2, 3]);
         assert!(c.residual < 1e-15 && c.gap_before < 1e-15);
         assert_eq!(c.points[2], Complex64::new(1.0, 1.0));
         // one side too long by 0.2: the two horizontal sides share the change
-        let c = close_curve(&[1.2, 1.0, 1.0, 1.0], &[1.0; 4], &t, 0);
+        let c = close_curve(&[1.2, 1.0, 1.0, 1.0], &[1.0; 4], &t, 0, &[0, 1, 2, 3]);
         assert!(c.residual < 1e-15);
         assert!((c.lengths[0] - 1.1).abs() < 1e-15 && (c.lengths[2] - 1.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn grouped_edges_change_alike() {
+        // a rectangle 2 × 1 of six unit edges, the bottom's first edge 0.1 too long; the
+        // bottom's second edge and the right side must keep equal lengths (a seam)
+        let pi2 = std::f64::consts::FRAC_PI_2;
+        let kappa = [pi2, 0.0, pi2, pi2, 0.0, pi2];
+        let t = tangents(&kappa, 0);
+        let target = [1.1, 1.0, 1.0, 1.0, 1.0, 1.0];
+        let free = close_curve(&target, &target, &t, 0, &[0, 1, 2, 3, 4, 5]);
+        assert!((free.lengths[1] - free.lengths[2]).abs() > 1e-3);
+        let tied = close_curve(&target, &target, &t, 0, &[0, 1, 2, 3, 4, 1]);
+        assert!(tied.residual < 1e-15, "{}", tied.residual);
+        assert!((tied.lengths[1] / target[1] - tied.lengths[5] / target[5]).abs() < 1e-15);
     }
 
     #[test]

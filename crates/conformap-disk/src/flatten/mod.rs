@@ -96,6 +96,11 @@ pub struct FlattenOptions {
     pub problem: ProblemOptions,
     /// Rounds of BFF's circle (curvature from lengths, lengths from curvature). Default: 3.
     pub circle_iterations: usize,
+    /// Pairs of boundary edges, each named by its first vertex along the boundary, that
+    /// must keep equal lengths: the closing of the boundary curve changes both by the same
+    /// factor (the two sides of a seam of a surface cut open, whose target lengths are
+    /// equal). Default: none.
+    pub equal_lengths: Vec<(u32, u32)>,
 }
 
 impl FlattenOptions {
@@ -105,6 +110,7 @@ impl FlattenOptions {
         interior: FlattenInterior::Harmonic,
         problem: ProblemOptions::DEFAULT,
         circle_iterations: 3,
+        equal_lengths: Vec::new(),
     };
 
     /// Sets [`Self::boundary`].
@@ -118,6 +124,13 @@ impl FlattenOptions {
     #[must_use]
     pub fn with_interior(mut self, interior: FlattenInterior) -> Self {
         self.interior = interior;
+        self
+    }
+
+    /// Sets [`Self::equal_lengths`].
+    #[must_use]
+    pub fn with_equal_lengths(mut self, pairs: Vec<(u32, u32)>) -> Self {
+        self.equal_lengths = pairs;
         self
     }
 
@@ -140,6 +153,27 @@ impl Default for FlattenOptions {
     fn default() -> Self {
         Self::DEFAULT
     }
+}
+
+/// The closing group of each boundary edge `lp[k] → lp[k + 1]`: its own, unless a pair of
+/// `equal` joins it with another (pairs naming a vertex off the loop are ignored).
+fn length_groups(lp: &[u32], equal: &[(u32, u32)]) -> Vec<u32> {
+    let mut group: Vec<u32> = (0..lp.len() as u32).collect();
+    if equal.is_empty() {
+        return group;
+    }
+    let mut at = std::collections::HashMap::with_capacity(lp.len());
+    for (k, &v) in lp.iter().enumerate() {
+        at.insert(v, k);
+    }
+    for &(a, b) in equal {
+        if let (Some(&i), Some(&j)) = (at.get(&a), at.get(&b)) {
+            let g = group[i].min(group[j]);
+            group[i] = g;
+            group[j] = g;
+        }
+    }
+    group
 }
 
 /// Flattens `mesh` conformally onto the plane with the boundary `options` ask for (boundary
@@ -203,7 +237,8 @@ pub fn flatten(mesh: &TriMesh, options: &FlattenOptions) -> Result<Flattening, D
     let lengths = curve::edge_lengths(work, lp);
     let target = curve::scaled_lengths(&lengths, &data.u_b);
     let tangents = curve::tangents(&data.kappa, data.start);
-    let closed = curve::close_curve(&target, &target, &tangents, data.start);
+    let groups = length_groups(lp, &options.equal_lengths);
+    let closed = curve::close_curve(&target, &target, &tangents, data.start, &groups);
     let points = match options.boundary {
         FlattenBoundary::Circle => on_circle(&closed.lengths, data.start),
         _ => closed.points.clone(),
