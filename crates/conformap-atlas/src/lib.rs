@@ -46,7 +46,7 @@ pub mod hull;
 mod pack;
 mod skyline;
 
-pub use chart::{chart_closed, chart_quality, Chart, ChartQuality};
+pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
 pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};

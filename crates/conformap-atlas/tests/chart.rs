@@ -43,3 +43,19 @@ fn genus_two_is_cut_through_its_handles_and_flattened_without_a_flip() {
     assert_eq!(q.flipped, 0, "{q:?}");
     assert!(q.seam_log_ratio_max < 1e-10, "{q:?}");
 }
+
+#[test]
+fn surfaces_with_boundary_are_charted_whatever_their_topology() {
+    use conformap_atlas::chart_component;
+    for (name, flips_ok) in [("woody", 0), ("halftunnel", 0), ("punctured_torus", 0)] {
+        let mesh = fixture(name);
+        let chart = chart_component(&mesh, None, &ConeOptions::default()).expect("charts");
+        assert_eq!(chart.cut.mesh.num_faces(), mesh.num_faces(), "{name}");
+        let q = chart_quality(&mesh, &chart.cut, &chart.uv);
+        assert_eq!(q.flipped, flips_ok, "{name}: {q:?}");
+        assert!(q.seam_log_ratio_max < 1e-10, "{name}: {q:?}");
+        // a disk-like surface gets no cone by default; the punctured torus its 8
+        let expect = if mesh.genus() == Some(0) { 0 } else { 8 };
+        assert_eq!(chart.cones.cones.len(), expect, "{name}");
+    }
+}

@@ -39,7 +39,8 @@ pub use surgery::{fill_holes, FilledMesh};
 #[doc(hidden)]
 pub use topology::doc_torus;
 pub use topology::{
-    cut_graph, cut_mesh, homology_basis, CutMesh, EdgeIndex, Generator, HomologyBasis,
+    cut_graph, cut_mesh, cut_mesh_along, homology_basis, CutMesh, EdgeIndex, Generator,
+    HomologyBasis,
 };
 pub use trimesh::{
     bbox_diagonal, bounding_box, triangle_area, Adjacency, Topology, TriMesh, ValidationOptions,

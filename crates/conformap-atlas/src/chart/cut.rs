@@ -57,18 +57,22 @@ impl Graph {
 }
 
 /// Adds to `on_cut` (one flag per edge) shortest paths that join every vertex of `targets`
-/// to the cut: grown from the vertices already on it (or from the first target when the
-/// cut is empty), one multi-source Dijkstra per target reached, nearest first. Returns the
-/// 3D length added.
+/// to the cut: grown from the vertices already on it and the `seeds` (a boundary), or
+/// from the first target when there are none, one multi-source Dijkstra per target
+/// reached, nearest first. Returns the 3D length added.
 pub(crate) fn join_to_cut(
     mesh: &TriMesh,
     edges: &EdgeIndex,
     graph: &Graph,
     on_cut: &mut [bool],
     targets: &[u32],
+    seeds: &[u32],
 ) -> f64 {
     let n = mesh.num_vertices();
     let mut in_tree = vec![false; n];
+    for &s in seeds {
+        in_tree[s as usize] = true;
+    }
     for (e, &c) in on_cut.iter().enumerate() {
         if c {
             let (a, b) = mesh.halfedge_vertices(edges.halfedge[e] as usize);

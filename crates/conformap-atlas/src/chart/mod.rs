@@ -12,7 +12,9 @@ mod cut;
 mod quality;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};
-use conformap_mesh::{cut_graph, cut_mesh, homology_basis, CutMesh, TriMesh};
+use conformap_mesh::{
+    cut_graph, cut_mesh_along, fill_holes, homology_basis, CutMesh, EdgeIndex, TriMesh,
+};
 use num_complex::Complex64;
 
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
@@ -36,7 +38,71 @@ pub struct Chart {
     pub closure_residual: f64,
 }
 
-/// Charts closed surface `mesh` (one component, any genus) with `cones` cones.
+/// Charts one connected component of any topology:
+/// - closed: [`chart_closed`] with `cones` cones (8 when `None`);
+/// - with boundary, genus 0: no cones by default (the free boundary of boundary first
+///   flattening, lengths kept, the least area distortion); with cones, the cone metric with
+///   `u = 0` on the boundary, the cones joined to it by shortest paths;
+/// - with boundary and handles: every boundary loop filled with a centroid fan, the closed
+///   surface charted, the fans dropped again (the holes become free openings of the chart).
+///
+/// # Errors
+/// As [`chart_closed`].
+pub fn chart_component(
+    mesh: &TriMesh,
+    cones: Option<usize>,
+    options: &ConeOptions,
+) -> Result<Chart, AtlasError> {
+    if mesh.boundary_loops().is_empty() {
+        return chart_closed(mesh, cones.unwrap_or(8), options);
+    }
+    if mesh.genus() == Some(0) {
+        return chart_closed(mesh, cones.unwrap_or(0), options);
+    }
+    let all: Vec<usize> = (0..mesh.boundary_loops().len()).collect();
+    let filled = fill_holes(mesh, &all).map_err(|e| AtlasError::Mesh(e.to_string()))?;
+    let chart = chart_closed(&filled.mesh, cones.unwrap_or(8), options)?;
+    Ok(drop_fans(chart, filled.original_faces))
+}
+
+/// The chart of a filled surface restricted to its first `faces` faces (the input's),
+/// the fan vertices left out and the rest renumbered in order.
+fn drop_fans(chart: Chart, faces: usize) -> Chart {
+    let cut_faces = &chart.cut.mesh.faces()[..faces];
+    let mut new_id = vec![u32::MAX; chart.cut.mesh.num_vertices()];
+    let mut original = Vec::new();
+    let mut positions = Vec::new();
+    let mut uv = Vec::new();
+    let mut kept_faces = Vec::with_capacity(faces);
+    for t in cut_faces {
+        kept_faces.push(t.map(|v| {
+            if new_id[v as usize] == u32::MAX {
+                new_id[v as usize] = original.len() as u32;
+                original.push(chart.cut.original[v as usize]);
+                positions.push(chart.cut.mesh.positions()[v as usize]);
+                uv.push(chart.uv[v as usize]);
+            }
+            new_id[v as usize]
+        }));
+    }
+    let mesh = match TriMesh::try_new(positions, kept_faces) {
+        Ok(m) => m,
+        // a sub-mesh of a valid mesh is valid; should it not be, keep the filled chart
+        Err(_) => return chart,
+    };
+    Chart {
+        cut: CutMesh {
+            mesh,
+            original,
+            on_cut: chart.cut.on_cut,
+        },
+        uv,
+        ..chart
+    }
+}
+
+/// Charts closed surface `mesh` (one component, any genus) with `cones` cones; a surface
+/// with boundary and genus 0 is charted the same way with `u = 0` on its boundary.
 ///
 /// # Errors
 /// [`AtlasError::Mesh`] if the cut does not leave a disk, [`AtlasError::Flatten`] if the
@@ -47,14 +113,19 @@ pub fn chart_closed(
     cones: usize,
     options: &ConeOptions,
 ) -> Result<Chart, AtlasError> {
-    let basis = homology_basis(mesh, None).map_err(|e| AtlasError::Mesh(e.to_string()))?;
-    let edges = &basis.edges;
-    let mut on_cut = if basis.generators.is_empty() {
-        vec![false; edges.len()]
+    // a surface with boundary comes here with genus 0: a planar domain needs no cut
+    let handles = mesh.boundary_loops().is_empty() && mesh.genus() != Some(0);
+    let (edges, mut on_cut) = if handles {
+        let basis = homology_basis(mesh, None).map_err(|e| AtlasError::Mesh(e.to_string()))?;
+        let on_cut = cut_graph(mesh, &basis);
+        (basis.edges, on_cut)
     } else {
-        cut_graph(mesh, &basis)
+        let edges = EdgeIndex::new(mesh);
+        let none = vec![false; edges.len()];
+        (edges, none)
     };
-    let metric = if basis.generators.is_empty() {
+    let edges = &edges;
+    let metric = if !handles {
         ConeMetric::new(mesh)?
     } else {
         let mut pinned = Vec::new();
@@ -70,17 +141,30 @@ pub fn chart_closed(
     let graph = cut::Graph::new(mesh, edges);
     let handle_length = cut_length(mesh, edges, &on_cut);
     let targets: Vec<u32> = set.cones.iter().map(|c| c.vertex).collect();
-    let added = cut::join_to_cut(mesh, edges, &graph, &mut on_cut, &targets);
-    let cut = cut_mesh(mesh, &basis, on_cut).map_err(|e| AtlasError::Mesh(e.to_string()))?;
-    let scale: Vec<(u32, f64)> = cut
+    let seeds: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
+    let added = cut::join_to_cut(mesh, edges, &graph, &mut on_cut, &targets, &seeds);
+    let cut = cut_mesh_along(mesh, edges, on_cut).map_err(|e| AtlasError::Mesh(e.to_string()))?;
+    // the scale on the boundary the flattening keeps: its longest loop (other loops of a
+    // planar domain are filled and left free by the flattening)
+    let longest = cut
         .mesh
         .boundary_loops()
         .iter()
-        .flatten()
-        .map(|&w| (w, set.u[cut.original[w as usize] as usize]))
-        .collect();
+        .max_by_key(|l| l.len())
+        .cloned()
+        .unwrap_or_default();
+    let boundary = if set.cones.is_empty() && !mesh.boundary_loops().is_empty() {
+        FlattenBoundary::Free
+    } else {
+        FlattenBoundary::Scale(
+            longest
+                .iter()
+                .map(|&w| (w, set.u[cut.original[w as usize] as usize]))
+                .collect(),
+        )
+    };
     let options = FlattenOptions::DEFAULT
-        .with_boundary(FlattenBoundary::Scale(scale))
+        .with_boundary(boundary)
         .with_equal_lengths(seam_pairs(mesh, &cut));
     let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
     Ok(Chart {
@@ -106,7 +190,7 @@ fn seam_pairs(mesh: &TriMesh, cut: &CutMesh) -> Vec<(u32, u32)> {
         .collect()
 }
 
-fn cut_length(mesh: &TriMesh, edges: &conformap_mesh::EdgeIndex, on_cut: &[bool]) -> f64 {
+fn cut_length(mesh: &TriMesh, edges: &EdgeIndex, on_cut: &[bool]) -> f64 {
     let p = mesh.positions();
     on_cut
         .iter()

@@ -2,6 +2,7 @@
 //! it into one topological disk (a fundamental domain).
 
 use crate::error::MeshError;
+use crate::topology::edges::EdgeIndex;
 use crate::topology::tree_cotree::{HomologyBasis, UnionFind};
 use crate::trimesh::{TriMesh, NO_HALFEDGE};
 
@@ -99,11 +100,25 @@ pub fn cut_mesh(
     basis: &HomologyBasis,
     on_cut: Vec<bool>,
 ) -> Result<CutMesh, MeshError> {
+    cut_mesh_along(mesh, &basis.edges, on_cut)
+}
+
+/// Opens `mesh` along the edges flagged in `on_cut` (indexed by `edges`), as [`cut_mesh`]
+/// does, for any cut of any surface (a tree of paths through cones, a surface with
+/// boundary): no homology basis needed.
+///
+/// # Errors
+/// As [`cut_mesh`].
+pub fn cut_mesh_along(
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    on_cut: Vec<bool>,
+) -> Result<CutMesh, MeshError> {
     let faces = mesh.faces();
     let opp = mesh.opposite_halfedges();
     let mut corners = UnionFind::new(3 * faces.len());
     for (h, &o) in opp.iter().enumerate() {
-        if o == NO_HALFEDGE || (o as usize) < h || on_cut[basis.edges.edge_of[h] as usize] {
+        if o == NO_HALFEDGE || (o as usize) < h || on_cut[edges.edge_of[h] as usize] {
             continue;
         }
         // h = a → b in face f, o = b → a in face g: glue the corners of a and of b
@@ -136,7 +151,7 @@ pub fn cut_mesh(
         .iter()
         .enumerate()
         .map(|(h, &o)| {
-            if o == NO_HALFEDGE || !on_cut[basis.edges.edge_of[h] as usize] {
+            if o == NO_HALFEDGE || !on_cut[edges.edge_of[h] as usize] {
                 return o;
             }
             let (f, k, g, m) = (h / 3, h % 3, o as usize / 3, o as usize % 3);

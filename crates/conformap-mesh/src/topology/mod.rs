@@ -12,7 +12,7 @@ mod cut;
 mod edges;
 mod tree_cotree;
 
-pub use cut::{cut_graph, cut_mesh, CutMesh};
+pub use cut::{cut_graph, cut_mesh, cut_mesh_along, CutMesh};
 pub use edges::EdgeIndex;
 pub(crate) use tree_cotree::UnionFind;
 pub use tree_cotree::{homology_basis, Generator, HomologyBasis};
