@@ -9,6 +9,7 @@
 //!   folding;
 //! - here: the driver, the fold check and the λ back-off.
 
+mod anchor;
 mod boundary;
 mod system;
 mod warp;
@@ -20,6 +21,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::MorphError;
+use anchor::Anchor;
 use boundary::{polygon_area, BoundaryEnergy};
 use system::LandmarkSystem;
 pub(crate) use warp::warp_landmarks;
@@ -212,12 +214,17 @@ pub fn register_disk(
     let hard = options.mode == LandmarkMode::Hard;
     let mut notes = Vec::new();
     let mut attempts = 0;
+    // the solves are measured from g (`anchor`): with the targets at g's own landmarks
+    // they return g
+    let anchor = Anchor::new(problem, g, sigma);
+    let offsets = anchor.offsets(vertices, targets);
     // one Eq. 34 solve: `lambda` None is the hard limit; `pin` puts boundary landmarks
     // exactly on the circle at their targets' direction (hard mode)
     let attempt = |lambda: Option<f64>, pin: bool, start: &[Complex64], sweeps: usize| {
         let inv_mu = lambda.map_or(0.0, |l| 0.5 / l);
         let pen = system.penalized(inv_mu).map_err(op)?;
-        let w = system.linear_term(&pen, targets);
+        let w_d = system.linear_term(&pen, &offsets);
+        let w = anchor.linear_term(&pen.s, &w_d);
         let nb = gb.len();
         let mut pull = vec![Complex64::new(0.0, 0.0); nb];
         let mut pinned = vec![false; nb];
@@ -240,7 +247,8 @@ pub fn register_disk(
             sigma,
         };
         let outcome = energy.sweep(&mut hb, sweeps, options.sweep_tol);
-        let h = system.full_map(&pen, &hb, targets);
+        let d = system.full_map(&pen, &anchor.displacement(&hb), &offsets);
+        let h = anchor.map(&d, &hb);
         if let Some(vertex) = h
             .iter()
             .position(|z| !(z.re.is_finite() && z.im.is_finite()))
