@@ -267,8 +267,8 @@ struct Prepared<'m> {
 /// [`MorphError::TooFewSurfaces`]; the landmark checks ([`Landmarks::check_against`],
 /// [`Landmarks::check_same_names`]); [`MorphError::Disk`] when a surface is not a disk or
 /// its map fails; [`MorphError::LandmarkOnBoundary`]; the registration's errors
-/// ([`register_disk`]); [`MorphError::InvalidOption`] for bad key times, crease angle or
-/// corner warp support; [`MorphError::Operator`] if S1's crease-loop extension cannot be
+/// ([`crate::register_disk`]); [`MorphError::InvalidOption`] for bad key times, crease
+/// angle or corner warp support; [`MorphError::Operator`] if S1's crease-loop extension cannot be
 /// factored or the corner warp's interpolation matrix is singular.
 pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, MorphError> {
     let t_all = Instant::now();
