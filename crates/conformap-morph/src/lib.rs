@@ -18,7 +18,7 @@
 //! - `locate`: [`TriangleGrid`] — point location in a registered disk ([`Location`]).
 //! - `homotopy`: [`CubicHomotopy`] — the natural cubic spline in time, as K weight
 //!   functions.
-//! - `morph`: [`morph`] → [`Morph`] — all of the above for K surfaces, with a
+//! - `morph`: [`morph()`] → [`Morph`] — all of the above for K surfaces, with a
 //!   [`MorphReport`] per key surface; [`Morph::frame`] gives the positions at any time.
 //! - [`creases`]: closed crease loops (e.g. the rims of zipped hole fills) and how S1's
 //!   are carried onto every key surface's.

@@ -1,6 +1,7 @@
 //! The whole morph (CEM §6): disk maps, normalization, registration onto S1's disk,
 //! location of S1's vertices on every key surface, and the spline homotopy.
 
+mod key;
 mod report;
 mod rims;
 
@@ -11,13 +12,14 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::quality::{flipped_against_key, flipped_at_vertices, largest_patch, CREASE_ANGLE_DEG};
+use crate::quality::CREASE_ANGLE_DEG;
 use crate::{
-    normalize_disk_map, register_disk, CubicHomotopy, LandmarkMode, Landmarks, Location,
-    MorphError, RegisterOptions, TriangleGrid, WarpOptions,
+    normalize_disk_map, CubicHomotopy, LandmarkMode, Landmarks, Location, MorphError,
+    RegisterOptions,
 };
+use key::{finish_report, morph_key, KeyResult, S1Data};
 pub use report::{CreaseSummary, DiskSummary, KeyReport, KeyTimings, LocateSummary, MorphReport};
-use rims::{carry_rims, KeyDisk, Rims};
+use rims::Rims;
 
 /// One key surface: a disk-like mesh and its landmarks.
 #[derive(Debug, Clone)]
@@ -265,11 +267,72 @@ struct Prepared<'m> {
 /// [`MorphError::TooFewSurfaces`]; the landmark checks ([`Landmarks::check_against`],
 /// [`Landmarks::check_same_names`]); [`MorphError::Disk`] when a surface is not a disk or
 /// its map fails; [`MorphError::LandmarkOnBoundary`]; the registration's errors
-/// ([`register_disk`]); [`MorphError::InvalidOption`] for bad key times, crease angle or
-/// corner warp support; [`MorphError::Operator`] if S1's crease-loop extension cannot be
+/// ([`crate::register_disk`]); [`MorphError::InvalidOption`] for bad key times, crease
+/// angle or corner warp support; [`MorphError::Operator`] if S1's crease-loop extension cannot be
 /// factored or the corner warp's interpolation matrix is singular.
 pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, MorphError> {
     let t_all = Instant::now();
+    let homotopy = check_inputs(surfaces, options)?;
+    let prepared: Vec<Prepared<'_>> = surfaces
+        .par_iter()
+        .enumerate()
+        .map(|(k, s)| prepare(k, s, options))
+        .collect::<Result<_, _>>()?;
+    let s1_disk = &prepared[0].normalized;
+    let targets: Vec<Complex64> = surfaces[0]
+        .landmarks
+        .vertices()
+        .iter()
+        .map(|&v| s1_disk[v as usize])
+        .collect();
+    let t_rims = Instant::now();
+    let rims = if options.match_creases {
+        Some(Rims::new(surfaces, &prepared[0].problem, s1_disk, options)?)
+    } else {
+        None
+    };
+    let rims_setup_ms = ms(t_rims);
+    let s1 = S1Data {
+        surfaces,
+        prepared: &prepared,
+        targets,
+        rims,
+    };
+    let later: Vec<KeyResult> = (1..surfaces.len())
+        .into_par_iter()
+        .map(|k| morph_key(&s1, k, options))
+        .collect::<Result<_, MorphError>>()?;
+    let mut keys = vec![surfaces[0].mesh.positions().to_vec()];
+    let mut locations = vec![Vec::new()];
+    let mut landings = vec![Vec::new()];
+    let mut reports = vec![key_report(0, surfaces, &prepared[0], &homotopy, None)];
+    for (i, result) in later.into_iter().enumerate() {
+        let k = i + 1;
+        let mut r = key_report(k, surfaces, &prepared[k], &homotopy, Some(&result.key));
+        finish_report(&mut r, surfaces, k, &result, rims_setup_ms);
+        reports.push(r);
+        keys.push(result.key);
+        locations.push(result.locations);
+        landings.push(result.landing);
+    }
+    Ok(Morph {
+        faces: surfaces[0].mesh.faces().to_vec(),
+        keys,
+        locations,
+        landings,
+        homotopy,
+        report: MorphReport {
+            landmarks: surfaces[0].landmarks.names().to_vec(),
+            keys: reports,
+            total_ms: ms(t_all),
+        },
+    })
+}
+
+/// The checks before any work (at least two surfaces, the crease angle, the corner warp
+/// support, the landmarks of every surface against S1's, the key times) and the spline
+/// basis of the key times.
+fn check_inputs(surfaces: &[Surface], options: &MorphOptions) -> Result<CubicHomotopy, MorphError> {
     if surfaces.len() < 2 {
         return Err(MorphError::TooFewSurfaces {
             found: surfaces.len(),
@@ -293,145 +356,14 @@ pub fn morph(surfaces: &[Surface], options: &MorphOptions) -> Result<Morph, Morp
         s.landmarks.check_against(k, s.mesh.num_vertices())?;
         s.landmarks.check_same_names(k, &surfaces[0].landmarks)?;
     }
-    let homotopy = match &options.key_times {
-        Some(t) if t.len() != surfaces.len() => {
-            return Err(MorphError::InvalidOption {
-                name: "key_times",
-                reason: format!("{} key times for {} surfaces", t.len(), surfaces.len()),
-            })
-        }
-        Some(t) => CubicHomotopy::new(t.clone())?,
-        None => CubicHomotopy::evenly_spaced(surfaces.len())?,
-    };
-    let prepared: Vec<Prepared<'_>> = surfaces
-        .par_iter()
-        .enumerate()
-        .map(|(k, s)| prepare(k, s, options))
-        .collect::<Result<_, _>>()?;
-    let s1 = &prepared[0];
-    let targets: Vec<Complex64> = surfaces[0]
-        .landmarks
-        .vertices()
-        .iter()
-        .map(|&v| s1.normalized[v as usize])
-        .collect();
-    let s1_disk = &s1.normalized;
-    let s1_mesh = &surfaces[0].mesh;
-    let t_rims = Instant::now();
-    let rims = if options.match_creases {
-        Some(Rims::new(surfaces, &prepared[0].problem, s1_disk, options)?)
-    } else {
-        None
-    };
-    let rims_setup_ms = ms(t_rims);
-    let later: Vec<_> = (1..surfaces.len())
-        .into_par_iter()
-        .map(|k| {
-            let t0 = Instant::now();
-            let mut reg = register_disk(
-                &prepared[k].problem,
-                &prepared[k].normalized,
-                surfaces[k].landmarks.vertices(),
-                &targets,
-                &options.register,
-                k,
-            )?;
-            let register_ms = ms(t0);
-            let t1 = Instant::now();
-            // S1's disk, its crease loops moved onto this surface's (rims: exact edge
-            // locations of the loop vertices; the corner warp may change the registered
-            // disk)
-            let carried = match &rims {
-                Some(r) => {
-                    let key = KeyDisk {
-                        mesh: &surfaces[k].mesh,
-                        landmarks: surfaces[k].landmarks.vertices(),
-                        map: &mut reg.map,
-                        warp: WarpOptions {
-                            support: options.corner_warp_support,
-                            ..options.register.warp
-                        },
-                    };
-                    let mut c = carry_rims(r, k, key)?;
-                    if c.summary.corner_warp.is_some() {
-                        c.summary.dirichlet_energy_after_corner_warp =
-                            Some(prepared[k].problem.dirichlet_energy(&reg.map));
-                    }
-                    Some(c)
-                }
-                None => None,
-            };
-            let grid = TriangleGrid::new(&reg.map, surfaces[k].mesh.faces());
-            let query = carried.as_ref().map_or(s1_disk, |c| &c.query);
-            let mut locations: Vec<Location> = query.iter().map(|&z| grid.locate(z)).collect();
-            if let Some(c) = &carried {
-                for t in &c.targets {
-                    locations[t.vertex as usize] = t.location;
-                }
-            }
-            if options.register.mode == LandmarkMode::Hard {
-                pin_landmarks(&mut locations, &surfaces[0], &surfaces[k]);
-            }
-            let landing: Vec<Location> = s1_mesh
-                .faces()
-                .iter()
-                .map(|f| grid.locate(f.iter().map(|&v| query[v as usize]).sum::<Complex64>() / 3.0))
-                .collect();
-            let key = carry(&surfaces[k].mesh, &locations);
-            let crease = carried.map(|c| c.summary);
-            Ok((reg, locations, landing, key, crease, register_ms, ms(t1)))
-        })
-        .collect::<Result<Vec<_>, MorphError>>()?;
-
-    let mut keys = vec![surfaces[0].mesh.positions().to_vec()];
-    let mut locations = vec![Vec::new()];
-    let mut landings = vec![Vec::new()];
-    let mut reports = vec![key_report(0, surfaces, &prepared[0], &homotopy, None)];
-    for (i, (reg, locs, landing, key, crease, register_ms, locate_ms)) in
-        later.into_iter().enumerate()
-    {
-        let k = i + 1;
-        let mut r = key_report(k, surfaces, &prepared[k], &homotopy, Some(&key));
-        let snapped: Vec<f64> = locs
-            .iter()
-            .map(|l| l.outside)
-            .filter(|&d| d > 0.0)
-            .collect();
-        r.locate = Some(LocateSummary {
-            snapped: snapped.len(),
-            max_outside: snapped.iter().copied().fold(0.0, f64::max),
-        });
-        let sk = &surfaces[k].mesh;
-        let flips =
-            flipped_against_key(&key, s1_mesh.faces(), sk.positions(), sk.faces(), &landing);
-        r.key_frame_flipped_faces = flips.len();
-        r.key_frame_largest_flip_patch = largest_patch(s1_mesh.faces(), &flips);
-        let at_vertices =
-            flipped_at_vertices(&key, s1_mesh.faces(), sk.positions(), sk.faces(), &locs);
-        r.key_frame_flipped_faces_at_vertices = at_vertices.len();
-        r.key_frame_largest_flip_patch_at_vertices = largest_patch(s1_mesh.faces(), &at_vertices);
-        r.creases = crease;
-        r.registration = Some(reg.report);
-        r.timings_ms.register = register_ms;
-        r.timings_ms.locate = locate_ms;
-        r.timings_ms.creases_setup = rims_setup_ms;
-        reports.push(r);
-        keys.push(key);
-        locations.push(locs);
-        landings.push(landing);
+    match &options.key_times {
+        Some(t) if t.len() != surfaces.len() => Err(MorphError::InvalidOption {
+            name: "key_times",
+            reason: format!("{} key times for {} surfaces", t.len(), surfaces.len()),
+        }),
+        Some(t) => CubicHomotopy::new(t.clone()),
+        None => CubicHomotopy::evenly_spaced(surfaces.len()),
     }
-    Ok(Morph {
-        faces: surfaces[0].mesh.faces().to_vec(),
-        keys,
-        locations,
-        landings,
-        homotopy,
-        report: MorphReport {
-            landmarks: surfaces[0].landmarks.names().to_vec(),
-            keys: reports,
-            total_ms: ms(t_all),
-        },
-    })
 }
 
 /// Disk map and normalization of surface `k`.
@@ -456,47 +388,6 @@ fn prepare<'m>(
         disk_ms,
         normalize_ms: ms(t1),
     })
-}
-
-/// Hard landmarks: S1's landmark vertex `j` is located exactly at surface `k`'s landmark
-/// vertex `j` (the registration sends the one onto the other; where the registered disk
-/// folds around a landmark, point location could pick an overlapping face instead).
-fn pin_landmarks(locations: &mut [Location], s1: &Surface, sk: &Surface) {
-    for (&v1, &vk) in s1.landmarks.vertices().iter().zip(sk.landmarks.vertices()) {
-        let found = sk
-            .mesh
-            .faces()
-            .iter()
-            .enumerate()
-            .find_map(|(f, tri)| tri.iter().position(|&v| v == vk).map(|c| (f, c)));
-        if let Some((face, corner)) = found {
-            let mut bary = [0.0; 3];
-            bary[corner] = 1.0;
-            locations[v1 as usize] = Location {
-                face: face as u32,
-                bary,
-                outside: 0.0,
-            };
-        }
-    }
-}
-
-/// The 3D point of `mesh` at every location.
-fn carry(mesh: &TriMesh, locations: &[Location]) -> Vec<[f64; 3]> {
-    let pos = mesh.positions();
-    locations
-        .iter()
-        .map(|l| {
-            let f = mesh.faces()[l.face as usize];
-            let mut p = [0.0; 3];
-            for i in 0..3 {
-                for c in 0..3 {
-                    p[c] += l.bary[i] * pos[f[i] as usize][c];
-                }
-            }
-            p
-        })
-        .collect()
 }
 
 /// The report of surface `k` without its registration, location and flip counts.

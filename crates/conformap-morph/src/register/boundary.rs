@@ -14,8 +14,18 @@
 //! − 2λ Σ_{j: l_j = b} t_j` (σ = ±1, the orientation of the boundary loop), minimized
 //! exactly by `h_b = −s_b/|s_b|`. Each update lowers the energy (or keeps it), so the
 //! sweeps descend monotonically; they stop when no vertex moves more than the tolerance.
+//! A move below the rounding of `s_b` is not taken ([`SWEEP_ROUNDING`]).
 
 use num_complex::Complex64;
+
+/// A one-vertex update moves `h_b` only when the move is larger than the rounding of its
+/// `s_b`: `SWEEP_ROUNDING · (2 Σ_c |S_bc| + |w_b| + |pull_b| + 1) / |s_b|` radians,
+/// `SWEEP_ROUNDING = 8 ε` (ε the f64 machine epsilon; the sum bounds the magnitude of the
+/// terms added into `s_b`). A smaller move is noise: taking it would move a boundary that
+/// is already at its minimum (e.g. a surface registered onto its own landmarks) by
+/// rounding, which the 3D positions amplify where the disk map compresses the mesh by
+/// many orders of magnitude (alligator: faces of area 1e-28 in the disk).
+const SWEEP_ROUNDING: f64 = 8.0 * f64::EPSILON;
 
 /// What the sweeps did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,6 +68,13 @@ impl BoundaryEnergy<'_> {
             }
         }
         let half_i = Complex64::new(0.0, 0.5 * self.sigma);
+        // the rounding of s_b: a move of h_b smaller than this angle is noise
+        let noise: Vec<f64> = (0..nb)
+            .map(|b| {
+                let row: f64 = self.s[b * nb..(b + 1) * nb].iter().map(|v| v.abs()).sum();
+                SWEEP_ROUNDING * (2.0 * row + self.w[b].norm() + self.pull[b].norm() + 1.0)
+            })
+            .collect();
         while sweeps < max_sweeps {
             sweeps += 1;
             let mut largest: f64 = 0.0;
@@ -77,7 +94,7 @@ impl BoundaryEnergy<'_> {
                 let delta = new - h[b];
                 let moved = (new * h[b].conj()).arg().abs();
                 largest = largest.max(moved);
-                if moved == 0.0 {
+                if moved <= noise[b] / norm {
                     continue;
                 }
                 let col = &self.s[b * nb..(b + 1) * nb];

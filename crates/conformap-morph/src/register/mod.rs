@@ -5,11 +5,18 @@
 //! - [`system`]: the sparse part, reusing the disk map's factorization of `L_II` for every
 //!   λ (Woodbury: only an `m × m` matrix is refactored when λ changes);
 //! - [`boundary`]: the sliding boundary (exact one-vertex minimizations on the circle);
+//! - [`anchor`]: the solves measured from the surface's own disk map (so that its own
+//!   landmark positions as targets give it back unchanged);
+//! - [`solve`]: one solve at a given λ;
+//! - [`search`]: where that folds, the largest λ without a fold and the warp from there;
 //! - [`warp`]: the fold-free landmark warp that finishes what Eq. 34 cannot do without
 //!   folding;
-//! - here: the driver, the fold check and the λ back-off.
+//! - here: the options, the report, the driver and the fold check.
 
+mod anchor;
 mod boundary;
+mod search;
+mod solve;
 mod system;
 mod warp;
 
@@ -20,7 +27,10 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::MorphError;
-use boundary::{polygon_area, BoundaryEnergy};
+use anchor::Anchor;
+use boundary::polygon_area;
+use search::unfold;
+use solve::{folded_by, Solver};
 use system::LandmarkSystem;
 pub(crate) use warp::warp_landmarks;
 pub use warp::{WarpOptions, WarpReport, WARP_MAX_STEPS, WARP_STEP, WARP_SUPPORT};
@@ -168,6 +178,11 @@ pub struct Registration {
 ///    checked for folds, [`WarpOptions`]) moves the landmarks of that map the rest of
 ///    the way onto their goals.
 ///
+/// Every solve is measured from `g` (the energy is tilted so that `g` is its critical
+/// point: with `targets` at `g`'s own landmark values the registration returns `g`
+/// exactly, see `anchor`), and a fold is a face folded by the solve that `g` does not
+/// fold (faces a disk map squeezed to rounding already folds are no λ's doing).
+///
 /// The report says which steps ran.
 ///
 /// # Errors
@@ -182,6 +197,133 @@ pub fn register_disk(
     options: &RegisterOptions,
     surface: usize,
 ) -> Result<Registration, MorphError> {
+    check_options(options)?;
+    let t0 = Instant::now();
+    let system = LandmarkSystem::new(problem, vertices)
+        .map_err(|source| MorphError::Operator { surface, source })?;
+    let setup_ms = ms(t0);
+    let t1 = Instant::now();
+    let gb = problem.partition().boundary_values(g);
+    let sigma = if polygon_area(&gb) >= 0.0 { 1.0 } else { -1.0 };
+    let anchor = Anchor::new(problem, g, sigma);
+    let solver = Solver {
+        problem,
+        system,
+        offsets: anchor.offsets(vertices, targets),
+        anchor,
+        targets,
+        sigma,
+        folded_in_g: folded_by(problem.mesh().faces(), g, sigma),
+        sweep_tol: options.sweep_tol,
+        surface,
+    };
+    let requested = match options.mode {
+        LandmarkMode::Soft(l) => Some(l),
+        LandmarkMode::Hard => None,
+    };
+    let hard = requested.is_none();
+    // searching solves stop their sweeps at SEARCH_SWEEPS; a solve that is kept is
+    // redone from there with the full sweeps
+    let search = options.max_sweeps.min(SEARCH_SWEEPS);
+    let mut attempts = 1;
+    let quick = solver.attempt(requested, hard, &gb, search)?;
+    let first = if quick.folds == 0 {
+        attempts += 1;
+        solver.attempt(requested, hard, &quick.hb, options.max_sweeps)?
+    } else {
+        quick
+    };
+    let (map, outcome, used, warp, notes) = if first.folds == 0 {
+        let mut h = first.h;
+        if hard {
+            pin_interior_landmarks(problem, &mut h, vertices, targets);
+        }
+        (h, first.outcome, requested, None, Vec::new())
+    } else {
+        let u = unfold(&solver, g, vertices, first, requested, options, search)?;
+        attempts += u.attempts;
+        (u.map, u.outcome, u.lambda, Some(u.warp), u.notes)
+    };
+    let done = Done {
+        map,
+        outcome,
+        used,
+        warp,
+        notes,
+        attempts,
+    };
+    Ok(done.into_registration(&solver, g, vertices, requested, options, [setup_ms, ms(t1)]))
+}
+
+/// The result of the solves, before the report.
+struct Done {
+    map: Vec<Complex64>,
+    outcome: boundary::SweepOutcome,
+    used: Option<f64>,
+    warp: Option<WarpReport>,
+    notes: Vec<String>,
+    attempts: usize,
+}
+
+impl Done {
+    /// The registration with its report (the fold check, the notes, the landmark errors
+    /// and the energies); `ms`: setup and solve milliseconds.
+    fn into_registration(
+        mut self,
+        solver: &Solver<'_, '_, '_>,
+        g: &[Complex64],
+        vertices: &[u32],
+        requested: Option<f64>,
+        options: &RegisterOptions,
+        ms: [f64; 2],
+    ) -> Registration {
+        let problem = solver.problem;
+        let map = self.map;
+        let folds = folded_faces(problem.mesh().faces(), &map, solver.sigma);
+        if folds > 0 {
+            self.notes.push(format!(
+                "{folds} face(s) stay folded in the registered disk"
+            ));
+        }
+        let outcome = self.outcome;
+        if !outcome.converged {
+            self.notes.push(format!(
+                "boundary sweeps stopped at the cap {} (last move {:.2e} rad)",
+                options.max_sweeps, outcome.last_move
+            ));
+        }
+        let errors: Vec<f64> = vertices
+            .iter()
+            .zip(solver.targets)
+            .map(|(&v, &t)| (map[v as usize] - t).norm())
+            .collect();
+        let dirichlet = problem.dirichlet_energy(&map);
+        let penalty = requested.map_or(0.0, |l| l * errors.iter().map(|e| e * e).sum::<f64>());
+        Registration {
+            report: RegistrationReport {
+                mode: if requested.is_none() { "hard" } else { "soft" },
+                lambda_requested: requested,
+                lambda_used: self.used,
+                energy: dirichlet + penalty,
+                dirichlet_energy: dirichlet,
+                dirichlet_energy_before: problem.dirichlet_energy(g),
+                landmark_disk_errors: errors,
+                folded_faces: folds,
+                sweeps: outcome.sweeps,
+                converged: outcome.converged,
+                attempts: self.attempts,
+                warp: self.warp,
+                notes: self.notes,
+                setup_ms: ms[0],
+                solve_ms: ms[1],
+            },
+            map,
+        }
+    }
+}
+
+/// λ finite and positive, the warp's support and step finite and positive.
+fn check_options(options: &RegisterOptions) -> Result<(), MorphError> {
     if let LandmarkMode::Soft(l) = options.mode {
         if !(l > 0.0 && l.is_finite()) {
             return Err(MorphError::InvalidOption {
@@ -200,236 +342,23 @@ pub fn register_disk(
             ),
         });
     }
-    let op = |source| MorphError::Operator { surface, source };
-    let t0 = Instant::now();
-    let system = LandmarkSystem::new(problem, vertices).map_err(op)?;
-    let setup_ms = ms(t0);
-    let t1 = Instant::now();
-    let part = problem.partition();
-    let gb = part.boundary_values(g);
-    let sigma = if polygon_area(&gb) >= 0.0 { 1.0 } else { -1.0 };
-    let mesh = problem.mesh();
-    let hard = options.mode == LandmarkMode::Hard;
-    let mut notes = Vec::new();
-    let mut attempts = 0;
-    // one Eq. 34 solve: `lambda` None is the hard limit; `pin` puts boundary landmarks
-    // exactly on the circle at their targets' direction (hard mode)
-    let attempt = |lambda: Option<f64>, pin: bool, start: &[Complex64], sweeps: usize| {
-        let inv_mu = lambda.map_or(0.0, |l| 0.5 / l);
-        let pen = system.penalized(inv_mu).map_err(op)?;
-        let w = system.linear_term(&pen, targets);
-        let nb = gb.len();
-        let mut pull = vec![Complex64::new(0.0, 0.0); nb];
-        let mut pinned = vec![false; nb];
-        let mut hb = start.to_vec();
-        for &(j, b) in &system.boundary {
-            match lambda {
-                Some(l) if !pin => pull[b] -= 2.0 * l * targets[j],
-                _ => {
-                    pinned[b] = true;
-                    let t = targets[j];
-                    hb[b] = if t.norm() > 0.0 { t / t.norm() } else { hb[b] };
-                }
-            }
-        }
-        let energy = BoundaryEnergy {
-            s: &pen.s,
-            w: &w,
-            pull: &pull,
-            pinned: &pinned,
-            sigma,
-        };
-        let outcome = energy.sweep(&mut hb, sweeps, options.sweep_tol);
-        let h = system.full_map(&pen, &hb, targets);
-        if let Some(vertex) = h
-            .iter()
-            .position(|z| !(z.re.is_finite() && z.im.is_finite()))
-        {
-            return Err(MorphError::NonFinite { surface, vertex });
-        }
-        let folds = folded_faces(mesh.faces(), &h, sigma);
-        Ok(Attempt {
-            h,
-            hb,
-            folds,
-            outcome,
-        })
-    };
-    let requested = match options.mode {
-        LandmarkMode::Soft(l) => Some(l),
-        LandmarkMode::Hard => None,
-    };
-    attempts += 1;
-    // searching solves stop their sweeps at SEARCH_SWEEPS; a solve that is kept is
-    // redone from there with the full sweeps
-    let search = options.max_sweeps.min(SEARCH_SWEEPS);
-    let quick = attempt(requested, hard, &gb, search)?;
-    let first = if quick.folds == 0 {
-        attempts += 1;
-        attempt(requested, hard, &quick.hb, options.max_sweeps)?
-    } else {
-        quick
-    };
-    let (map, outcome, used, warp) = if first.folds == 0 {
-        let mut h = first.h;
-        if hard {
-            // exactly on target (the solve leaves rounding)
-            for (&v, &t) in vertices.iter().zip(targets) {
-                if part.is_interior[v as usize] {
-                    h[v as usize] = t;
-                }
-            }
-        }
-        (h, first.outcome, requested, None)
-    } else {
-        // the goals: where Eq. 34 at the requested λ puts the landmarks (hard: on
-        // their targets)
-        let goals: Vec<Complex64> = if hard {
-            targets.to_vec()
-        } else {
-            vertices.iter().map(|&v| first.h[v as usize]).collect()
-        };
-        notes.push(format!(
-            "{} folds {} face(s): the landmarks are brought to where it puts them by the \
-             largest λ without a fold and a fold-free landmark warp",
-            match requested {
-                Some(l) => format!("λ = {l:e}"),
-                None => "the hard constraint".to_string(),
-            },
-            first.folds
-        ));
-        // the search for the largest λ without a fold (each solve's sweeps start from
-        // the boundary of the last); phase 1: divide λ by LAMBDA_BACKOFF until nothing
-        // folds
-        let mut lambda = requested.unwrap_or(DEFAULT_LAMBDA);
-        let mut folded_at = lambda;
-        let mut found: Option<(Vec<Complex64>, f64)> = None;
-        let mut start = first.hb.clone();
-        for _ in 0..MAX_LAMBDA_BACKOFFS {
-            let lower = lambda / LAMBDA_BACKOFF;
-            attempts += 1;
-            let a = attempt(Some(lower), hard, &start, search)?;
-            start = a.hb;
-            if a.folds == 0 {
-                found = Some((start.clone(), lower));
-                break;
-            }
-            folded_at = lower;
-            lambda = lower;
-        }
-        // phase 2: bisect (geometrically) between the last λ that folded and the first
-        // that did not
-        if let Some((hb, mut lo)) = found.take() {
-            let (mut hi, mut from) = (folded_at, hb);
-            for _ in 0..LAMBDA_BISECTIONS {
-                let mid = (hi * lo).sqrt();
-                attempts += 1;
-                let a = attempt(Some(mid), hard, &from, search)?;
-                if a.folds == 0 {
-                    lo = mid;
-                    from = a.hb;
-                } else {
-                    hi = mid;
-                }
-            }
-            found = Some((from, lo));
-        }
-        // the base: the full solve at the λ found (lowered again should the converged
-        // boundary fold)
-        let mut base: Option<(Attempt, f64)> = None;
-        if let Some((from, mut lo)) = found {
-            for _ in 0..MAX_LAMBDA_BACKOFFS {
-                attempts += 1;
-                let a = attempt(Some(lo), hard, &from, options.max_sweeps)?;
-                if a.folds == 0 {
-                    base = Some((a, lo));
-                    break;
-                }
-                lo /= LAMBDA_BACKOFF;
-            }
-        }
-        // no λ without a fold: the normalized disk map itself (it has none)
-        let (mut h, outcome, lo) = match base {
-            Some((a, lo)) => (a.h, a.outcome, Some(lo)),
-            None => {
-                notes.push(format!(
-                    "every λ down to {lambda:e} folds: the warp starts from the unregistered disk"
-                ));
-                (g.to_vec(), first.outcome, None)
-            }
-        };
-        if let Some(lo) = lo {
-            notes.push(format!("largest λ without a fold: {lo:e}"));
-        }
-        let active: Vec<bool> = vertices
-            .iter()
-            .map(|&v| part.is_interior[v as usize])
-            .collect();
-        let report = warp_landmarks(
-            &mut h,
-            mesh.faces(),
-            vertices,
-            &goals,
-            &active,
-            sigma,
-            &options.warp,
-        )
-        .map_err(op)?;
-        if !report.reached {
-            notes.push(format!(
-                "the landmark warp stopped at its cap of {} steps, short of the goals",
-                options.warp.max_steps
-            ));
-        }
-        (h, outcome, lo, Some(report))
-    };
-    let folds = folded_faces(mesh.faces(), &map, sigma);
-    if folds > 0 {
-        notes.push(format!(
-            "{folds} face(s) stay folded in the registered disk"
-        ));
-    }
-    if !outcome.converged {
-        notes.push(format!(
-            "boundary sweeps stopped at the cap {} (last move {:.2e} rad)",
-            options.max_sweeps, outcome.last_move
-        ));
-    }
-    let errors: Vec<f64> = vertices
-        .iter()
-        .zip(targets)
-        .map(|(&v, &t)| (map[v as usize] - t).norm())
-        .collect();
-    let dirichlet = problem.dirichlet_energy(&map);
-    let penalty = requested.map_or(0.0, |l| l * errors.iter().map(|e| e * e).sum::<f64>());
-    Ok(Registration {
-        report: RegistrationReport {
-            mode: if hard { "hard" } else { "soft" },
-            lambda_requested: requested,
-            lambda_used: used,
-            energy: dirichlet + penalty,
-            dirichlet_energy: dirichlet,
-            dirichlet_energy_before: problem.dirichlet_energy(g),
-            landmark_disk_errors: errors,
-            folded_faces: folds,
-            sweeps: outcome.sweeps,
-            converged: outcome.converged,
-            attempts,
-            warp,
-            notes,
-            setup_ms,
-            solve_ms: ms(t1),
-        },
-        map,
-    })
+    Ok(())
 }
 
-/// One solve of Eq. 34.
-struct Attempt {
-    h: Vec<Complex64>,
-    hb: Vec<Complex64>,
-    folds: usize,
-    outcome: boundary::SweepOutcome,
+/// Hard mode: the interior landmarks exactly on their targets (the solve leaves
+/// rounding).
+fn pin_interior_landmarks(
+    problem: &DiskProblem<'_>,
+    h: &mut [Complex64],
+    vertices: &[u32],
+    targets: &[Complex64],
+) {
+    let part = problem.partition();
+    for (&v, &t) in vertices.iter().zip(targets) {
+        if part.is_interior[v as usize] {
+            h[v as usize] = t;
+        }
+    }
 }
 
 /// Faces whose image under `map` has signed area of the wrong sign (against `sigma`, the

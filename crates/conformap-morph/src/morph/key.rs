@@ -1,0 +1,196 @@
+//! One key surface of the morph after the disk maps: its registration onto S1's disk,
+//! S1's crease loops carried onto its loops, the location of S1's vertices and faces in
+//! its registered disk, their 3D positions, and the quality counts of its key frame.
+
+use std::time::Instant;
+
+use conformap_mesh::TriMesh;
+use num_complex::Complex64;
+
+use super::report::{CreaseSummary, KeyReport, LocateSummary};
+use super::rims::{carry_rims, Carried, KeyDisk, Rims};
+use super::{ms, MorphOptions, Prepared, Surface};
+use crate::quality::{flipped_against_key, flipped_at_vertices, largest_patch};
+use crate::{
+    register_disk, LandmarkMode, Location, MorphError, Registration, TriangleGrid, WarpOptions,
+};
+
+/// What the morph computed for one key surface `k ≥ 1`.
+pub(super) struct KeyResult {
+    pub registration: Registration,
+    /// Where S1's vertices lie on surface `k`.
+    pub locations: Vec<Location>,
+    /// Where S1's face centroids lie on surface `k`.
+    pub landing: Vec<Location>,
+    /// The 3D positions of S1's vertices on surface `k`.
+    pub key: Vec<[f64; 3]>,
+    pub crease: Option<CreaseSummary>,
+    pub register_ms: f64,
+    pub locate_ms: f64,
+}
+
+/// What S1 offers every key surface: its disk, the registration targets (its
+/// normalized landmarks) and its crease loops.
+pub(super) struct S1Data<'a> {
+    pub surfaces: &'a [Surface],
+    pub prepared: &'a [Prepared<'a>],
+    pub targets: Vec<Complex64>,
+    pub rims: Option<Rims<'a>>,
+}
+
+/// Key surface `k`: registered, S1's loops carried, S1 located and carried to 3D.
+pub(super) fn morph_key(
+    s1: &S1Data<'_>,
+    k: usize,
+    options: &MorphOptions,
+) -> Result<KeyResult, MorphError> {
+    let (surfaces, prepared) = (s1.surfaces, s1.prepared);
+    let t0 = Instant::now();
+    let mut registration = register_disk(
+        &prepared[k].problem,
+        &prepared[k].normalized,
+        surfaces[k].landmarks.vertices(),
+        &s1.targets,
+        &options.register,
+        k,
+    )?;
+    let register_ms = ms(t0);
+    let t1 = Instant::now();
+    let carried = carry_creases(s1, k, &mut registration.map, options)?;
+    let s1_disk = &prepared[0].normalized;
+    let grid = TriangleGrid::new(&registration.map, surfaces[k].mesh.faces());
+    // S1's disk, its crease loops moved onto this surface's (rims: exact edge locations
+    // of the loop vertices; the corner warp may have changed the registered disk)
+    let query = carried.as_ref().map_or(s1_disk, |c| &c.query);
+    let mut locations: Vec<Location> = query.iter().map(|&z| grid.locate(z)).collect();
+    if let Some(c) = &carried {
+        for t in &c.targets {
+            locations[t.vertex as usize] = t.location;
+        }
+    }
+    if options.register.mode == LandmarkMode::Hard {
+        pin_landmarks(&mut locations, &surfaces[0], &surfaces[k]);
+    }
+    let landing: Vec<Location> = surfaces[0]
+        .mesh
+        .faces()
+        .iter()
+        .map(|f| grid.locate(f.iter().map(|&v| query[v as usize]).sum::<Complex64>() / 3.0))
+        .collect();
+    let key = carry(&surfaces[k].mesh, &locations);
+    Ok(KeyResult {
+        registration,
+        locations,
+        landing,
+        key,
+        crease: carried.map(|c| c.summary),
+        register_ms,
+        locate_ms: ms(t1),
+    })
+}
+
+/// S1's crease loops carried onto key surface `k`'s (`None` without crease matching);
+/// the corner warp may change the registered disk `map`.
+fn carry_creases(
+    s1: &S1Data<'_>,
+    k: usize,
+    map: &mut [Complex64],
+    options: &MorphOptions,
+) -> Result<Option<Carried>, MorphError> {
+    let Some(r) = &s1.rims else {
+        return Ok(None);
+    };
+    let surface = &s1.surfaces[k];
+    let key = KeyDisk {
+        mesh: &surface.mesh,
+        landmarks: surface.landmarks.vertices(),
+        map: &mut *map,
+        warp: WarpOptions {
+            support: options.corner_warp_support,
+            ..options.register.warp
+        },
+    };
+    let mut c = carry_rims(r, k, key)?;
+    if c.summary.corner_warp.is_some() {
+        c.summary.dirichlet_energy_after_corner_warp =
+            Some(s1.prepared[k].problem.dirichlet_energy(map));
+    }
+    Ok(Some(c))
+}
+
+/// Completes `r`, the report of key surface `k`, with what [`morph_key`] found: the
+/// snapped locations, the flip counts of the key frame, the registration, the creases
+/// and the timings.
+pub(super) fn finish_report(
+    r: &mut KeyReport,
+    surfaces: &[Surface],
+    k: usize,
+    result: &KeyResult,
+    rims_setup_ms: f64,
+) {
+    let snapped: Vec<f64> = result
+        .locations
+        .iter()
+        .map(|l| l.outside)
+        .filter(|&d| d > 0.0)
+        .collect();
+    r.locate = Some(LocateSummary {
+        snapped: snapped.len(),
+        max_outside: snapped.iter().copied().fold(0.0, f64::max),
+    });
+    let (s1, sk) = (&surfaces[0].mesh, &surfaces[k].mesh);
+    let (key, faces) = (&result.key, s1.faces());
+    let flips = flipped_against_key(key, faces, sk.positions(), sk.faces(), &result.landing);
+    r.key_frame_flipped_faces = flips.len();
+    r.key_frame_largest_flip_patch = largest_patch(faces, &flips);
+    let at_vertices =
+        flipped_at_vertices(key, faces, sk.positions(), sk.faces(), &result.locations);
+    r.key_frame_flipped_faces_at_vertices = at_vertices.len();
+    r.key_frame_largest_flip_patch_at_vertices = largest_patch(faces, &at_vertices);
+    r.creases = result.crease.clone();
+    r.registration = Some(result.registration.report.clone());
+    r.timings_ms.register = result.register_ms;
+    r.timings_ms.locate = result.locate_ms;
+    r.timings_ms.creases_setup = rims_setup_ms;
+}
+
+/// Hard landmarks: S1's landmark vertex `j` is located exactly at surface `k`'s landmark
+/// vertex `j` (the registration sends the one onto the other; where the registered disk
+/// folds around a landmark, point location could pick an overlapping face instead).
+fn pin_landmarks(locations: &mut [Location], s1: &Surface, sk: &Surface) {
+    for (&v1, &vk) in s1.landmarks.vertices().iter().zip(sk.landmarks.vertices()) {
+        let found = sk
+            .mesh
+            .faces()
+            .iter()
+            .enumerate()
+            .find_map(|(f, tri)| tri.iter().position(|&v| v == vk).map(|c| (f, c)));
+        if let Some((face, corner)) = found {
+            let mut bary = [0.0; 3];
+            bary[corner] = 1.0;
+            locations[v1 as usize] = Location {
+                face: face as u32,
+                bary,
+                outside: 0.0,
+            };
+        }
+    }
+}
+
+/// The 3D point of `mesh` at every location.
+fn carry(mesh: &TriMesh, locations: &[Location]) -> Vec<[f64; 3]> {
+    let pos = mesh.positions();
+    locations
+        .iter()
+        .map(|l| {
+            let f = mesh.faces()[l.face as usize];
+            let mut p = [0.0; 3];
+            for i in 0..3 {
+                for c in 0..3 {
+                    p[c] += l.bary[i] * pos[f[i] as usize][c];
+                }
+            }
+            p
+        })
+        .collect()
+}
