@@ -34,6 +34,14 @@ pub enum AtlasError {
     /// A cut chart could not be flattened.
     #[error("a chart could not be flattened: {0}")]
     Flatten(String),
+    /// A connected component of the input is not a valid mesh.
+    #[error("component {index} is not a valid mesh: {why}")]
+    Component {
+        /// The component (in the order of its first face).
+        index: usize,
+        /// What is wrong.
+        why: String,
+    },
     /// The margins alone do not fit: too many charts for the resolution.
     #[error(
         "{charts} charts with a margin of {margin} texels do not fit in a {resolution}² \

@@ -9,6 +9,9 @@
 //! files.
 //!
 //! # Contents
+//! - [`build_atlas`] → [`Atlas`]: the whole atlas of a triangle soup (every component
+//!   charted, self-overlapping charts split, everything packed), with its [`AtlasReport`].
+//! - [`chart`]: one component's chart ([`chart_component`]), its quality.
 //! - [`pack_charts`] → [`Packing`]: each chart turned to its smallest bounding rectangle,
 //!   scaled by one common factor (the largest that fits) and placed by a skyline packer,
 //!   configured by [`PackOptions`] (resolution, margin in texels, rotation).
@@ -39,6 +42,7 @@
 //! # Ok::<(), conformap_atlas::AtlasError>(())
 //! ```
 
+mod build;
 pub mod chart;
 pub mod cones;
 mod error;
@@ -46,6 +50,7 @@ pub mod hull;
 mod pack;
 mod skyline;
 
+pub use build::{build_atlas, split_components, Atlas, AtlasOptions, AtlasReport, ComponentChart};
 pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;

@@ -10,6 +10,7 @@
 
 mod cut;
 mod quality;
+mod split;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};
 use conformap_mesh::{
@@ -21,6 +22,7 @@ use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
 pub use quality::{chart_quality, ChartQuality};
+pub use split::{split_overlapping, Piece, MAX_SPLIT_DEPTH};
 
 /// A closed surface cut into one disk and flattened.
 #[derive(Debug, Clone)]

@@ -1,0 +1,321 @@
+//! A whole atlas: every connected component charted, the charts packed into `[0,1]²` with
+//! one texel density, one texture coordinate per face corner of the input.
+
+use conformap_mesh::TriMesh;
+use conformap_metrics::{raster_overlap, RasterFrame, RasterOverlap, OVERLAP_RESOLUTION};
+use serde::Serialize;
+
+use crate::chart::{chart_component, chart_quality, split_overlapping, Chart, ChartQuality, Piece};
+use crate::cones::ConeOptions;
+use crate::error::AtlasError;
+use crate::pack::{pack_charts, PackOptions, Packing};
+
+/// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct AtlasOptions {
+    /// Cones per closed component (and per component with handles); `None`: 8 there, 0 on
+    /// a genus-0 component with boundary (boundary first flattening's defaults).
+    pub cones: Option<usize>,
+    /// Cone placement.
+    pub cone_options: ConeOptions,
+    /// Packing.
+    pub pack: PackOptions,
+}
+
+impl AtlasOptions {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self {
+        cones: None,
+        cone_options: ConeOptions::DEFAULT,
+        pack: PackOptions::DEFAULT,
+    };
+
+    /// With a fixed number of cones on every component.
+    pub fn with_cones(mut self, cones: usize) -> Self {
+        self.cones = Some(cones);
+        self
+    }
+}
+
+impl Default for AtlasOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// One component's chart and where its faces and vertices came from.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct ComponentChart {
+    /// Input face of each of the component's faces.
+    pub faces: Vec<u32>,
+    /// Input vertex of each of the component's vertices.
+    pub vertices: Vec<u32>,
+    /// The component's mesh.
+    pub mesh: TriMesh,
+    /// Its chart.
+    pub chart: Chart,
+    /// Its quality in its own layout (before any split).
+    pub quality: ChartQuality,
+    /// The flat pieces it was laid out as: one, or more where the chart overlapped itself
+    /// and was split.
+    pub pieces: Vec<Piece>,
+}
+
+/// The numbers of an atlas, for reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[non_exhaustive]
+pub struct AtlasReport {
+    /// Connected components.
+    pub components: usize,
+    /// Charts packed (a component whose layout overlapped itself is split in several).
+    pub charts: usize,
+    /// Cones over all charts.
+    pub cones: usize,
+    /// Faces turned over in the atlas.
+    pub flipped: usize,
+    /// sd over all faces of `log(uv area share / 3D area share)`.
+    pub area_spread: f64,
+    /// Mean over corners of the angle distortion, degrees.
+    pub angle_mean_deg: f64,
+    /// The mean seam length mismatch `|log(l₁/l₂)|` over the seam edges of the atlas
+    /// (edges whose two faces give them different texture coordinates).
+    pub seam_log_ratio_mean: f64,
+    /// The largest one.
+    pub seam_log_ratio_max: f64,
+    /// Texels covered twice at [`OVERLAP_RESOLUTION`]².
+    pub overlap: RasterOverlap,
+    /// Share of `[0,1]²` covered by the charts.
+    pub packing_efficiency: f64,
+    /// Texture units per 3D unit (one texel density for the whole atlas).
+    pub scale: f64,
+}
+
+/// A texture atlas of a mesh.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Atlas {
+    /// One texture coordinate per corner of every input face, `uv[3 f + k]`, in `[0,1]²`.
+    pub uv: Vec<[f64; 2]>,
+    /// The charts.
+    pub charts: Vec<ComponentChart>,
+    /// Where each chart went.
+    pub packing: Packing,
+    /// The numbers.
+    pub report: AtlasReport,
+}
+
+/// Builds the atlas of the triangle soup `positions`, `faces` (any number of components,
+/// each one a valid manifold surface).
+///
+/// # Errors
+/// [`AtlasError::Component`] naming the component whose mesh is not valid, and every error
+/// of [`chart_component`] and [`pack_charts`].
+pub fn build_atlas(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    options: &AtlasOptions,
+) -> Result<Atlas, AtlasError> {
+    let components = split_components(positions.len(), faces);
+    let mut charts = Vec::with_capacity(components.len());
+    for (index, face_ids) in components.into_iter().enumerate() {
+        let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
+            .map_err(|why| AtlasError::Component { index, why })?;
+        let chart = chart_component(&mesh, options.cones, &options.cone_options)?;
+        let quality = chart_quality(&mesh, &chart.cut, &chart.uv);
+        let whole = Piece {
+            faces: (0..mesh.num_faces() as u32).collect(),
+            mesh: chart.cut.mesh.clone(),
+            original: chart.cut.original.clone(),
+            uv: chart.uv.clone(),
+        };
+        let pieces = split_overlapping(whole, 0)?;
+        charts.push(ComponentChart {
+            faces: face_ids,
+            vertices,
+            mesh,
+            chart,
+            quality,
+            pieces,
+        });
+    }
+    let outlines: Vec<Vec<[f64; 2]>> = charts
+        .iter()
+        .flat_map(|c| &c.pieces)
+        .map(|p| p.uv.iter().map(|z| [z.re, z.im]).collect())
+        .collect();
+    let packing = pack_charts(&outlines, &options.pack)?;
+    let mut uv = vec![[0.0; 2]; 3 * faces.len()];
+    let mut places = packing.charts.iter();
+    for c in &charts {
+        for piece in &c.pieces {
+            let Some(place) = places.next() else { break };
+            for (local, &cf) in piece.faces.iter().enumerate() {
+                let f = c.faces[cf as usize] as usize;
+                let t = piece.mesh.faces()[local];
+                for k in 0..3 {
+                    let z = piece.uv[t[k] as usize];
+                    uv[3 * f + k] = place.apply([z.re, z.im]);
+                }
+            }
+        }
+    }
+    let report = report(positions, faces, &uv, &charts, &packing);
+    Ok(Atlas {
+        uv,
+        charts,
+        packing,
+        report,
+    })
+}
+
+/// Faces grouped by connected component (through shared vertices), each group in input
+/// order, groups ordered by their first face.
+pub fn split_components(vertices: usize, faces: &[[u32; 3]]) -> Vec<Vec<u32>> {
+    let mut parent: Vec<u32> = (0..vertices as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            p[x as usize] = p[p[x as usize] as usize];
+            x = p[x as usize];
+        }
+        x
+    }
+    for t in faces {
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut group_of = std::collections::HashMap::new();
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (f, t) in faces.iter().enumerate() {
+        let root = find(&mut parent, t[0]);
+        let g = *group_of.entry(root).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(f as u32);
+    }
+    groups
+}
+
+/// The mesh of one component (vertices renumbered in order of first use) and the input
+/// vertex of each of its vertices.
+fn component_mesh(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    ids: &[u32],
+) -> Result<(TriMesh, Vec<u32>), String> {
+    let mut local = std::collections::HashMap::new();
+    let mut vertices = Vec::new();
+    let mut tris = Vec::with_capacity(ids.len());
+    for &f in ids {
+        tris.push(faces[f as usize].map(|v| {
+            *local.entry(v).or_insert_with(|| {
+                vertices.push(v);
+                (vertices.len() - 1) as u32
+            })
+        }));
+    }
+    let pts = vertices.iter().map(|&v| positions[v as usize]).collect();
+    let mesh = TriMesh::try_new(pts, tris).map_err(|e| e.to_string())?;
+    Ok((mesh, vertices))
+}
+
+/// The largest `|log(l₁/l₂)|` over the seams of the atlas: input edges whose two faces
+/// give them different texture coordinates.
+fn seam_log_ratios(uv: &[[f64; 2]], charts: &[ComponentChart]) -> (f64, f64) {
+    let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0usize);
+    for c in charts {
+        let opp = c.mesh.opposite_halfedges();
+        for (h, &o) in opp.iter().enumerate() {
+            if o == conformap_mesh::NO_HALFEDGE || (o as usize) < h {
+                continue;
+            }
+            let corner = |h: usize, step: usize| {
+                let (f, k) = (h / 3, (h % 3 + step) % 3);
+                uv[3 * c.faces[f] as usize + k]
+            };
+            let (a, b) = (corner(h, 0), corner(h, 1));
+            let (p, q) = (corner(o as usize, 1), corner(o as usize, 0));
+            if a == p && b == q {
+                continue;
+            }
+            let l1 = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+            let l2 = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+            let r = (l1 / l2).ln().abs();
+            worst = worst.max(r);
+            sum += r;
+            count += 1;
+        }
+    }
+    (sum / count.max(1) as f64, worst)
+}
+
+fn report(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    uv: &[[f64; 2]],
+    charts: &[ComponentChart],
+    packing: &Packing,
+) -> AtlasReport {
+    let tris = (0..faces.len()).map(|f| [uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]);
+    let overlap = raster_overlap(tris.clone(), OVERLAP_RESOLUTION, RasterFrame::UnitSquare);
+    let (mut a3, mut a2) = (
+        Vec::with_capacity(faces.len()),
+        Vec::with_capacity(faces.len()),
+    );
+    for (f, t) in faces.iter().enumerate() {
+        let p = t.map(|v| positions[v as usize]);
+        let (u, v) = (
+            [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
+            [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
+        );
+        a3.push(
+            0.5 * ((u[1] * v[2] - u[2] * v[1]).powi(2)
+                + (u[2] * v[0] - u[0] * v[2]).powi(2)
+                + (u[0] * v[1] - u[1] * v[0]).powi(2))
+            .sqrt(),
+        );
+        let q = [uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]];
+        a2.push(
+            0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
+                - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])),
+        );
+    }
+    let (s3, s2) = (
+        a3.iter().sum::<f64>(),
+        a2.iter().map(|a| a.abs()).sum::<f64>(),
+    );
+    let logs: Vec<f64> = a3
+        .iter()
+        .zip(&a2)
+        .map(|(&x, &y)| ((y.abs() / s2).max(f64::MIN_POSITIVE) / (x / s3)).ln())
+        .collect();
+    let n = logs.len().max(1) as f64;
+    let mean = logs.iter().sum::<f64>() / n;
+    let area_spread = (logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let seams = seam_log_ratios(uv, charts);
+    let corners: f64 = charts.iter().map(|c| 3.0 * c.mesh.num_faces() as f64).sum();
+    let angle_mean_deg = charts
+        .iter()
+        .map(|c| c.quality.angle_mean_deg * 3.0 * c.mesh.num_faces() as f64)
+        .sum::<f64>()
+        / corners.max(1.0);
+    AtlasReport {
+        components: charts.len(),
+        charts: charts.iter().map(|c| c.pieces.len()).sum(),
+        cones: charts.iter().map(|c| c.chart.cones.cones.len()).sum(),
+        flipped: a2.iter().filter(|&&a| a <= 0.0).count(),
+        area_spread,
+        angle_mean_deg,
+        seam_log_ratio_mean: seams.0,
+        seam_log_ratio_max: seams.1,
+        overlap,
+        packing_efficiency: s2,
+        scale: packing.scale,
+    }
+}

@@ -1,0 +1,209 @@
+//! Charts that overlap themselves are split: a flip-free layout of a disk is one-to-one
+//! unless its boundary crosses itself, so where two boundary edges cross, the disk is cut
+//! in two along the shortest interior path between them (the two crossing edges end up on
+//! different sides) and the pieces keep their layout, to be packed apart: every seam keeps
+//! its lengths exactly, the new ones too. Repeated until no piece overlaps itself.
+
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+
+use conformap_mesh::{TriMesh, NO_HALFEDGE};
+use conformap_metrics::boundary_crossings;
+use num_complex::Complex64;
+
+use crate::error::AtlasError;
+
+/// A flat piece of a component: its faces (component-local ids), its own mesh (a disk),
+/// the component vertex of each of its vertices, and its layout.
+#[derive(Debug, Clone)]
+pub struct Piece {
+    /// Component face of each face.
+    pub faces: Vec<u32>,
+    /// The piece as a mesh.
+    pub mesh: TriMesh,
+    /// Component vertex of each vertex.
+    pub original: Vec<u32>,
+    /// Layout, one point per vertex.
+    pub uv: Vec<Complex64>,
+}
+
+/// How deep splitting goes: at most 2^6 = 64 pieces from one chart. A chart still
+/// overlapping then is returned as it is (the report's overlap says so).
+pub const MAX_SPLIT_DEPTH: usize = 6;
+
+/// Splits `piece` until no part of it overlaps itself.
+///
+/// # Errors
+/// [`AtlasError::Mesh`] should a piece fail validation (pieces of a valid disk are valid).
+pub fn split_overlapping(piece: Piece, depth: usize) -> Result<Vec<Piece>, AtlasError> {
+    let loops = piece.mesh.boundary_loops().to_vec();
+    let crossings = boundary_crossings(&piece.uv, &loops, 32);
+    if crossings.is_empty() || depth >= MAX_SPLIT_DEPTH || loops.len() != 1 {
+        return Ok(vec![piece]);
+    }
+    // the first crossing (and choice of its edges' ends) that a path can separate
+    let lp = &loops[0];
+    let m = lp.len();
+    let groups = crossings.iter().find_map(|&((_, ka), (_, kb))| {
+        [(ka, kb), (ka + 1, kb), (ka, kb + 1), (ka + 1, kb + 1)]
+            .into_iter()
+            .map(|(i, j)| (lp[i % m], lp[j % m]))
+            .filter(|(a, b)| a != b)
+            .find_map(|(a, b)| halves(&piece.mesh, a, b))
+    });
+    let Some(groups) = groups else {
+        return Ok(vec![piece]);
+    };
+    let mut out = Vec::new();
+    for group in groups {
+        let sub = sub_piece(&piece, &group)?;
+        out.extend(split_overlapping(sub, depth + 1)?);
+    }
+    Ok(out)
+}
+
+/// The faces on the sides of the shortest path of interior edges from boundary vertex `a`
+/// to boundary vertex `b` (a boundary vertex on the way counts four times its edge's
+/// length: thin strips may need one); `None` when there is no such path or it does not
+/// separate.
+fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
+    let n = mesh.num_vertices();
+    let mut on_boundary = vec![false; n];
+    for &v in mesh.boundary_loops().iter().flatten() {
+        on_boundary[v as usize] = true;
+    }
+    let opp = mesh.opposite_halfedges();
+    let p = mesh.positions();
+    let len = |x: u32, y: u32| {
+        let (q, r) = (p[x as usize], p[y as usize]);
+        ((q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) + (q[2] - r[2]).powi(2)).sqrt()
+    };
+    // interior edges only; intermediate vertices interior
+    let mut adj: Vec<Vec<(u32, usize)>> = vec![Vec::new(); n];
+    for (h, &o) in opp.iter().enumerate() {
+        if o == NO_HALFEDGE {
+            continue;
+        }
+        let (x, y) = mesh.halfedge_vertices(h);
+        adj[x as usize].push((y, h));
+    }
+    let mut dist = vec![f64::INFINITY; n];
+    let mut via = vec![usize::MAX; n];
+    let mut heap = BinaryHeap::new();
+    dist[a as usize] = 0.0;
+    heap.push(Reverse((Ord64(0.0), a)));
+    while let Some(Reverse((Ord64(d), v))) = heap.pop() {
+        if d > dist[v as usize] {
+            continue;
+        }
+        if v == b {
+            break;
+        }
+        // prefer interior vertices: a boundary vertex on the way costs a detour's worth
+        for &(w, h) in &adj[v as usize] {
+            let nd = d + len(v, w)
+                * if on_boundary[w as usize] && w != b {
+                    4.0
+                } else {
+                    1.0
+                };
+            if nd < dist[w as usize] {
+                dist[w as usize] = nd;
+                via[w as usize] = h;
+                heap.push(Reverse((Ord64(nd), w)));
+            }
+        }
+    }
+    if !dist[b as usize].is_finite() {
+        return None;
+    }
+    let mut on_path = vec![false; opp.len()];
+    let mut v = b;
+    while v != a {
+        let h = via[v as usize];
+        on_path[h] = true;
+        on_path[opp[h] as usize] = true;
+        v = mesh.halfedge_vertices(h).0;
+    }
+    // faces flooded across every interior edge not on the path
+    let nf = mesh.num_faces();
+    let mut group = vec![u32::MAX; nf];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for start in 0..nf {
+        if group[start] != u32::MAX {
+            continue;
+        }
+        let g = groups.len() as u32;
+        let mut stack = vec![start];
+        group[start] = g;
+        let mut members = Vec::new();
+        while let Some(f) = stack.pop() {
+            members.push(f as u32);
+            for k in 0..3 {
+                let h = 3 * f + k;
+                let o = opp[h];
+                if o == NO_HALFEDGE || on_path[h] {
+                    continue;
+                }
+                let nb = o as usize / 3;
+                if group[nb] == u32::MAX {
+                    group[nb] = g;
+                    stack.push(nb);
+                }
+            }
+        }
+        members.sort_unstable();
+        groups.push(members);
+    }
+    (groups.len() >= 2).then_some(groups)
+}
+
+/// The layout of the new vertices: the parent's.
+fn local_uv(local: &HashMap<u32, u32>, parent: &[Complex64], n: usize) -> Vec<Complex64> {
+    let mut uv = vec![Complex64::new(0.0, 0.0); n];
+    for (&v, &l) in local {
+        uv[l as usize] = parent[v as usize];
+    }
+    uv
+}
+
+/// The piece of `piece` made of its faces `faces`, in the parent's layout.
+fn sub_piece(piece: &Piece, faces: &[u32]) -> Result<Piece, AtlasError> {
+    let mut local = HashMap::new();
+    let mut original = Vec::new();
+    let mut positions = Vec::new();
+    let mut tris = Vec::with_capacity(faces.len());
+    for &f in faces {
+        let t = piece.mesh.faces()[f as usize];
+        tris.push(t.map(|v| {
+            *local.entry(v).or_insert_with(|| {
+                original.push(piece.original[v as usize]);
+                positions.push(piece.mesh.positions()[v as usize]);
+                (original.len() - 1) as u32
+            })
+        }));
+    }
+    let mesh = TriMesh::try_new(positions, tris).map_err(|e| AtlasError::Mesh(e.to_string()))?;
+    let uv = local_uv(&local, &piece.uv, original.len());
+    Ok(Piece {
+        faces: faces.iter().map(|&f| piece.faces[f as usize]).collect(),
+        mesh,
+        original,
+        uv,
+    })
+}
+
+/// A total order on finite distances, for the heap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Ord64(f64);
+impl Eq for Ord64 {}
+impl PartialOrd for Ord64 {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Ord64 {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}
