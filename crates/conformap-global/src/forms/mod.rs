@@ -32,6 +32,7 @@ mod layout;
 mod optimal;
 mod options;
 mod periods;
+mod pipeline;
 mod quality;
 mod seamed;
 mod zeros;
@@ -40,7 +41,6 @@ mod zeros;
 mod tests;
 
 pub use conjugate::ConjugateMethod;
-pub(crate) use global_map::global_map_ranked;
 pub use global_map::{global_map, GlobalMap, GlobalTimings};
 pub use optimal::{
     EmphasisReport, FormSearchOptions, Objective, ObjectiveReport, UniformSearch,
@@ -49,6 +49,7 @@ pub use optimal::{
 };
 pub use options::GlobalMapOptions;
 pub use periods::{reduce_modulus, MODULUS_MAX_STEPS};
+pub(crate) use pipeline::global_map_ranked;
 pub use quality::LayoutMetrics;
 pub use seamed::SeamedLayout;
 pub use zeros::{Zero, ZeroReport};
