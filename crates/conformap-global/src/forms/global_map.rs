@@ -1,6 +1,7 @@
-//! The global conformal parameterization of a surface of genus ≥ 1 (Jin et al. 2004,
-//! §3.1): homology, cohomology, harmonic and holomorphic bases, a chosen form integrated
-//! over the fundamental domain, its zeros, conformal factor and quality.
+//! The result of the global conformal parameterization of a surface of genus ≥ 1 (Jin et
+//! al. 2004, §3.1): homology, cohomology, harmonic and holomorphic bases, a chosen form
+//! integrated over the fundamental domain, its zeros, conformal factor and quality (the
+//! computation is `pipeline.rs`).
 
 use conformap_mesh::{CutMesh, EdgeIndex, TriMesh};
 use conformap_operators::planar::triangle_signed_area;
@@ -10,13 +11,11 @@ use serde::{Deserialize, Serialize};
 use crate::forms::cohomology::Cochain;
 use crate::forms::conjugate::ConjugateMethod;
 use crate::forms::optimal::ObjectiveReport;
-use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{holomorphic_basis, ComplexCochain};
 use crate::forms::quality::LayoutMetrics;
 use crate::forms::zeros::{Zero, ZeroReport};
-use crate::GlobalError;
 
-/// Wall-clock milliseconds by step of [`global_map`].
+/// Wall-clock milliseconds by step of [`global_map`](crate::global_map).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[non_exhaustive]
 pub struct GlobalTimings {
@@ -100,7 +99,7 @@ pub struct GlobalMap {
     pub harmonic_residual: f64,
     /// Largest `|dω|` on the root face of the cohomology peeling.
     pub closedness_residual: f64,
-    /// The basis form named by [`GlobalMapOptions::form`], else the basis form of lowest
+    /// The basis form named by [`GlobalMapOptions::form`](crate::GlobalMapOptions::form), else the basis form of lowest
     /// uniformity energy (the laid-out form is [`ObjectiveReport::coefficients`]).
     pub form_index: usize,
     /// Uniformity energy of every basis form (over the input's faces).
@@ -108,7 +107,7 @@ pub struct GlobalMap {
     /// The real harmonic forms `ω_k` per edge of [`Self::surface`]: the real parts of the
     /// holomorphic basis ([`Self::basis_forms`]).
     pub harmonic_forms: Vec<Cochain>,
-    /// The conjugation `Λ` (row-major `2g × 2g`, of [`GlobalMapOptions::conjugate`]): the
+    /// The conjugation `Λ` (row-major `2g × 2g`, of [`GlobalMapOptions::conjugate`](crate::GlobalMapOptions::conjugate)): the
     /// conjugate forms are `*ω_k = Σ_j Λ_jk ω_j`.
     pub conjugation: Vec<f64>,
     /// The laid-out form per edge of [`Self::surface`], scaled so that the layout's area
@@ -192,33 +191,4 @@ impl GlobalMap {
                 (lo.min(x), hi.max(x))
             })
     }
-}
-
-/// The global conformal parameterization of `mesh` by a holomorphic 1-form (Jin et al.
-/// 2004, §3.1 and Gu–Yau): closed surfaces of genus `g ≥ 1` directly, connected surfaces of
-/// genus ≥ 1 or with ≥ 2 boundary loops through their double covering (its forms restricted
-/// to the first copy). One factorization of the cotangent Laplacian.
-///
-/// # Errors
-/// [`GlobalError::WrongTopology`] for genus-0 surfaces with at most one boundary loop
-/// (`conformap sphere` / `conformap disk`), several components; [`GlobalError::Mesh`] if
-/// the double covering or the cut fails; [`GlobalError::Operator`] if the Laplacian is not
-/// positive definite; [`GlobalError::DegenerateFormBasis`]; [`GlobalError::InvalidOption`]
-/// for a form index out of range.
-///
-/// # Examples
-/// ```
-/// use conformap_global::{global_map, GlobalMapOptions};
-/// # let torus = conformap_mesh::doc_torus();
-/// // `torus`: a closed genus-1 mesh (a coarse torus of revolution, radii 2 and 1)
-/// let map = global_map(&torus, &GlobalMapOptions::DEFAULT)?;
-/// assert_eq!(map.genus, 1);
-/// assert!(map.seam_residual < 1e-12); // seams are pure translations
-/// assert_eq!(map.zeros.multiplicity_sum, 0); // 2g − 2
-/// let tau = map.tau.unwrap();
-/// assert!((tau.im - 3f64.sqrt()).abs() < 0.2); // √(R² − r²)/r, coarse mesh
-/// # Ok::<(), conformap_global::GlobalError>(())
-/// ```
-pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMap, GlobalError> {
-    crate::forms::pipeline::global_map_ranked(mesh, options, None)
 }

@@ -1,4 +1,4 @@
-//! The steps of [`global_map`](crate::global_map), in order: the closed surface the forms
+//! [`global_map`] and its steps, in order: the closed surface the forms
 //! live on, its topology (concurrent with the Laplacian's factorization), the harmonic
 //! projection, the conjugation and periods, the objective's choice of form, the layout, the
 //! zeros and the metrics. Each step hands the next a named struct.
@@ -28,10 +28,39 @@ use crate::forms::quality::layout_metrics;
 use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch};
 use crate::GlobalError;
 
-/// [`global_map`](crate::global_map) whose double covering's two factorizations eliminate
+/// The global conformal parameterization of `mesh` by a holomorphic 1-form (Jin et al.
+/// 2004, §3.1 and Gu–Yau): closed surfaces of genus `g ≥ 1` directly, connected surfaces of
+/// genus ≥ 1 or with ≥ 2 boundary loops through their double covering (its forms restricted
+/// to the first copy). One factorization of the cotangent Laplacian.
+///
+/// # Errors
+/// [`GlobalError::WrongTopology`] for genus-0 surfaces with at most one boundary loop
+/// (`conformap sphere` / `conformap disk`), several components; [`GlobalError::Mesh`] if
+/// the double covering or the cut fails; [`GlobalError::Operator`] if the Laplacian is not
+/// positive definite; [`GlobalError::DegenerateFormBasis`]; [`GlobalError::InvalidOption`]
+/// for a form index out of range.
+///
+/// # Examples
+/// ```
+/// use conformap_global::{global_map, GlobalMapOptions};
+/// # let torus = conformap_mesh::doc_torus();
+/// // `torus`: a closed genus-1 mesh (a coarse torus of revolution, radii 2 and 1)
+/// let map = global_map(&torus, &GlobalMapOptions::DEFAULT)?;
+/// assert_eq!(map.genus, 1);
+/// assert!(map.seam_residual < 1e-12); // seams are pure translations
+/// assert_eq!(map.zeros.multiplicity_sum, 0); // 2g − 2
+/// let tau = map.tau.unwrap();
+/// assert!((tau.im - 3f64.sqrt()).abs() < 0.2); // √(R² − r²)/r, coarse mesh
+/// # Ok::<(), conformap_global::GlobalError>(())
+/// ```
+pub fn global_map(mesh: &TriMesh, options: &GlobalMapOptions) -> Result<GlobalMap, GlobalError> {
+    global_map_ranked(mesh, options, None)
+}
+
+/// [`global_map`] whose double covering's two factorizations eliminate
 /// the vertices in the order of `rank` (per vertex of `mesh`, see
 /// `HarmonicFactor::mirrored`) instead of a fresh fill-reducing ordering; `None`: the plain
-/// [`global_map`](crate::global_map).
+/// [`global_map`].
 pub(crate) fn global_map_ranked(
     mesh: &TriMesh,
     options: &GlobalMapOptions,
