@@ -73,3 +73,23 @@ pub enum GlobalError {
     #[error(transparent)]
     Sphere(#[from] conformap_sphere::SphereError),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::GlobalError;
+    use conformap_sphere::SphereError;
+
+    #[test]
+    fn a_genus_0_error_keeps_its_message_and_its_fields_inside_global_error() {
+        let inner = match conformap_sphere::region_mask(4, &[7]) {
+            Err(e) => e,
+            Ok(mask) => panic!("face 7 of 4 accepted: {mask:?}"),
+        };
+        let outer = GlobalError::from(inner.clone());
+        assert_eq!(outer.to_string(), inner.to_string());
+        assert_eq!(
+            outer,
+            GlobalError::Sphere(SphereError::RegionFaceOutOfRange { face: 7, faces: 4 })
+        );
+    }
+}
