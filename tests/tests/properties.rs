@@ -10,9 +10,10 @@
 #![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
 use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
-use conformap_global::{global_map, DiskAutomorphism, GlobalMapOptions, Mobius};
+use conformap_global::{global_map, GlobalMapOptions};
 use conformap_mesh::TriMesh;
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_sphere::{DiskAutomorphism, Mobius};
 use conformap_testkit::{flat_disk, jittered_torus};
 use num_complex::Complex64;
 

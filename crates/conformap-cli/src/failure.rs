@@ -207,30 +207,47 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::MeshError)
     }
 }
 
-impl From<conformap_global::GlobalError> for Failure {
+/// The hint for a mesh of the wrong topology (sphere, disk and global maps alike).
+fn topology_hint() -> Option<String> {
+    Some(
+        "`conformap info MESH` shows the topology: `sphere` maps closed genus-0 \
+         meshes, `disk` meshes with boundary loops and no handles, `global` meshes \
+         with handles or several boundary loops"
+            .to_string(),
+    )
+}
+
+impl From<conformap_sphere::SphereError> for Failure {
     /// Wrong topology, bad options and bad given maps or regions are bad input (exit 1),
     /// everything else numerical (exit 3).
-    fn from(e: conformap_global::GlobalError) -> Self {
-        use conformap_global::GlobalError as E;
-        let hint = match &e {
-            E::WrongTopology { .. } => Some(
-                "`conformap info MESH` shows the topology: `sphere` maps closed genus-0 \
-                 meshes, `disk` meshes with boundary loops and no handles, `global` meshes \
-                 with handles or several boundary loops"
-                    .to_string(),
-            ),
-            _ => None,
-        };
+    fn from(e: conformap_sphere::SphereError) -> Self {
+        use conformap_sphere::SphereError as E;
         match e {
-            E::WrongTopology { .. }
-            | E::MapLength { .. }
+            E::WrongTopology { .. } => Self::BadInput(e.to_string(), topology_hint()),
+            E::MapLength { .. }
             | E::NonFiniteMap { .. }
             | E::NotOnSphere { .. }
             | E::NotInDisk { .. }
             | E::RegionFaceOutOfRange { .. }
             | E::DegenerateRegion { .. }
-            | E::InvalidOption { .. }
-            | E::ZeroTargetOutOfRange { .. } => Self::BadInput(e.to_string(), hint),
+            | E::InvalidOption { .. } => Self::BadInput(e.to_string(), None),
+            other => Self::Numerical(other.to_string()),
+        }
+    }
+}
+
+impl From<conformap_global::GlobalError> for Failure {
+    /// Wrong topology, bad options and bad zero targets are bad input (exit 1), a genus-0
+    /// step's failure as [`conformap_sphere::SphereError`] says, everything else numerical
+    /// (exit 3).
+    fn from(e: conformap_global::GlobalError) -> Self {
+        use conformap_global::GlobalError as E;
+        match e {
+            E::Sphere(inner) => inner.into(),
+            E::WrongTopology { .. } => Self::BadInput(e.to_string(), topology_hint()),
+            E::InvalidOption { .. } | E::ZeroTargetOutOfRange { .. } => {
+                Self::BadInput(e.to_string(), None)
+            }
             other => Self::Numerical(other.to_string()),
         }
     }

@@ -144,7 +144,7 @@ pub enum MapQuality {
     /// A planar map (disk, disk with holes).
     Planar(conformap_metrics::MapMetrics),
     /// A sphere map.
-    Sphere(conformap_global::SphereMetrics),
+    Sphere(conformap_sphere::SphereMetrics),
 }
 
 impl MetricsSection {
@@ -157,7 +157,7 @@ impl MetricsSection {
     }
 
     /// The metrics of a sphere map.
-    pub fn sphere(m: conformap_global::SphereMetrics) -> Self {
+    pub fn sphere(m: conformap_sphere::SphereMetrics) -> Self {
         Self {
             base: MapQuality::Sphere(m),
             extra: Map::new(),

@@ -152,7 +152,7 @@ fn write_obj(path: &Path, mesh: &conformap_mesh::TriMesh) {
 fn a_returned_sphere_map_is_drawn_as_sphere_draws_it() {
     let d = tmpdir("global-topology-sphere-png");
     let mesh = d.join("ellipsoid.obj");
-    write_obj(&mesh, &conformap_global::doc_support::octahedron_sphere(3));
+    write_obj(&mesh, &conformap_sphere::doc_support::octahedron_sphere(3));
     let (a, b) = (d.join("a"), d.join("b"));
     let o = conformap(&[
         "sphere",

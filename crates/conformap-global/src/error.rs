@@ -3,13 +3,15 @@
 use conformap_mesh::{MeshError, Topology};
 use conformap_operators::OperatorError;
 
-/// Why a sphere map, double covering or Möbius optimization could not be computed.
+/// Why a global conformal map by holomorphic 1-forms or a topological optimization could
+/// not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum GlobalError {
-    /// The mesh has the wrong topology for the operation. Fix: a sphere map needs one
-    /// connected closed genus-0 surface (`conformap info MESH` shows the topology); a double
-    /// covering needs a disk (genus 0, one boundary loop).
+    /// The mesh has the wrong topology for the operation. Fix: a global map needs one
+    /// connected surface of genus ≥ 1 or with ≥ 2 boundary loops (`conformap info MESH` shows
+    /// the topology); genus-0 closed surfaces and disks are `conformap-sphere`'s and
+    /// `conformap-disk`'s.
     #[error("{operation} needs {expected}, but the mesh is {found}")]
     WrongTopology {
         /// What was attempted.
@@ -27,7 +29,7 @@ pub enum GlobalError {
     /// inner error; `conformap disk` on the same mesh reports the same).
     #[error("the starting disk map failed: {0}")]
     Disk(#[from] conformap_disk::DiskError),
-    /// A mesh built by surgery (the double covering) failed validation.
+    /// A mesh built by surgery (the cut along the homology basis, a slit) failed validation.
     #[error("mesh surgery failed: {0}")]
     Mesh(#[from] MeshError),
     /// The computation produced a non-finite value at this vertex. Fix: the cotangent
@@ -38,60 +40,6 @@ pub enum GlobalError {
         vertex: usize,
         /// Which step produced it.
         stage: &'static str,
-    },
-    /// A map given to a metric or an optimizer has the wrong number of values.
-    #[error("the map has {found} values but the mesh has {expected} vertices")]
-    MapLength {
-        /// Vertices of the mesh.
-        expected: usize,
-        /// Values given.
-        found: usize,
-    },
-    /// A value of a given map is not finite.
-    #[error("the map value of vertex {vertex} is not finite")]
-    NonFiniteMap {
-        /// 0-based vertex index.
-        vertex: usize,
-    },
-    /// A given sphere map has a point off the unit sphere (by more than the tolerance). Fix:
-    /// pass unit vectors (a sphere map as written by `conformap sphere --flat`).
-    #[error("vertex {vertex} of the sphere map is at radius {radius}, not on the unit sphere")]
-    NotOnSphere {
-        /// 0-based vertex index.
-        vertex: usize,
-        /// Its distance from the origin.
-        radius: f64,
-    },
-    /// A given disk map has a point outside the closed unit disk (by more than the
-    /// tolerance). Fix: pass a disk map (e.g. written by `conformap disk`).
-    #[error("vertex {vertex} of the disk map is at radius {radius}, outside the unit disk")]
-    NotInDisk {
-        /// 0-based vertex index.
-        vertex: usize,
-        /// Its distance from the origin.
-        radius: f64,
-    },
-    /// The emphasized region names a face that does not exist.
-    #[error("region face {face} is out of range: the mesh has {faces} faces")]
-    RegionFaceOutOfRange {
-        /// The index given.
-        face: usize,
-        /// Faces of the mesh.
-        faces: usize,
-    },
-    /// The emphasized region is empty or covers every face, so there is nothing to trade.
-    #[error("the emphasized region has {region} of {faces} faces: it must be a proper, non-empty subset")]
-    DegenerateRegion {
-        /// Distinct faces in the region.
-        region: usize,
-        /// Faces of the mesh.
-        faces: usize,
-    },
-    /// A Möbius matrix is singular or not finite.
-    #[error("the Möbius coefficients are singular or not finite (|det| = {det:e})")]
-    SingularMobius {
-        /// `|ad − bc|` (sphere) or `|a|² − |b|²` (disk) before normalization.
-        det: f64,
     },
     /// An option is out of range. Fix: see the option's documentation for its range.
     #[error("invalid option {name}: {reason}")]
@@ -119,4 +67,29 @@ pub enum GlobalError {
         /// Vertices of the input.
         vertices: usize,
     },
+    /// A genus-0 step failed: the sphere map, the double covering or a Möbius optimization
+    /// (see the inner error: its message, cause and fix are unchanged). An emphasized region
+    /// out of range is reported here too ([`conformap_sphere::SphereError::RegionFaceOutOfRange`]).
+    #[error(transparent)]
+    Sphere(#[from] conformap_sphere::SphereError),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::GlobalError;
+    use conformap_sphere::SphereError;
+
+    #[test]
+    fn a_genus_0_error_keeps_its_message_and_its_fields_inside_global_error() {
+        let inner = match conformap_sphere::region_mask(4, &[7]) {
+            Err(e) => e,
+            Ok(mask) => panic!("face 7 of 4 accepted: {mask:?}"),
+        };
+        let outer = GlobalError::from(inner.clone());
+        assert_eq!(outer.to_string(), inner.to_string());
+        assert_eq!(
+            outer,
+            GlobalError::Sphere(SphereError::RegionFaceOutOfRange { face: 7, faces: 4 })
+        );
+    }
 }

@@ -1,104 +1,52 @@
-//! Sphere maps and Möbius optimization for conformap: genus-0 closed surfaces, double
-//! covering, optimal Möbius transforms.
+//! Global conformal maps of surfaces of genus g ≥ 1 for conformap: holomorphic 1-form
+//! bases, the optimal form, its zeros, topological optimization.
 //!
-//! Depends on `conformap-mesh` (validated meshes), `conformap-operators` (cotangent
-//! Laplacian, sparse Cholesky) and `conformap-disk` (Angenent's dipole right-hand side, and
-//! the harmonic extension used by the double-cover route); never touches files, never
-//! prints, and owns no planar-map metric (those are `conformap-metrics`').
+//! Depends on `conformap-mesh` (validated meshes, homology, cuts, slits),
+//! `conformap-operators` (cotangent Laplacian, sparse Cholesky, vector primitives),
+//! `conformap-disk` (the starting disk map of a topological optimization),
+//! `conformap-metrics` (summary statistics) and `conformap-sphere` (the double covering of
+//! surfaces with boundary, the sphere maps and Möbius optimizations a topological
+//! optimization starts from); never touches files, never prints, and owns no genus-0 map
+//! (those are `conformap-sphere`'s and `conformap-disk`'s).
 //!
 //! # Contents
-//! - **Sphere maps** of closed genus-0 meshes: [`sphere_map`] (Angenent's map, inverse
-//!   stereographic projection, harmonic corrections in the opposite chart) →
-//!   [`SphereMap`], configured by [`SphereOptions`], judged by [`sphere_metrics`] →
-//!   [`SphereMetrics`] (radius residual, inverted faces, chord-angle distortion, Beltrami
-//!   `|μ|` in stereographic charts, area distortion, uniformity energy, Möbius-invariant
-//!   cross-ratio distortion).
-//! - **Möbius maps**: [`Mobius`] (`(az + b)/(cz + d)`, `ad − bc = 1`, acting on the sphere
-//!   through [`stereographic`]) and [`DiskAutomorphism`] (`(az + b)/(b̄z + ā)`); their
-//!   optimization for the uniformity or emphasized-area energies of Jin et al. (2004, §3.4):
-//!   [`optimize_sphere_mobius`], [`optimize_disk_mobius`] with [`MobiusObjective`] and
-//!   [`MobiusOptions`] → [`MobiusReport`].
-//! - **Double covering** of a disk mesh: [`double_cover`], and the disk map through it,
-//!   [`double_cover_disk_map`] — a second route to the disk map, independent of CEM.
-//! - Energies on their own: [`sphere_uniformity_energy`], [`disk_uniformity_energy`],
-//!   [`sphere_region_share`], [`disk_region_share`], [`region_mask`].
+//! - **Global maps by holomorphic 1-forms** (Jin et al. 2004, §3.1–3.3, §3.6): [`global_map`]
+//!   → [`GlobalMap`] (homology, harmonic and holomorphic bases, periods, τ, the chosen
+//!   form laid out over the fundamental domain, its [`Zero`]s, conformal factor and
+//!   [`LayoutMetrics`]), configured by [`GlobalMapOptions`] with an [`Objective`] (best
+//!   basis form, most or least uniform, emphasized area, zeros at given vertices) and
+//!   [`FormSearchOptions`]; [`GlobalMap::seamed_layout`] → [`SeamedLayout`].
 //! - **Topological optimization** (§3.5): [`topology_opt`] slits the surface (closed
 //!   genus 0, a disk, or higher genus) at the extreme points of its map and maps the slit
 //!   surface by its most uniform holomorphic form, greedily, returning the best layout seen
 //!   ([`TopologyOpt`], [`TopologyOptOptions`]).
-//! - [`GlobalError`]: the one error type.
+//! - [`GlobalError`]: the one error type (genus-0 failures inside it are
+//!   [`GlobalError::Sphere`]).
 //!
 //! # Example
 //! ```
-//! use conformap_global::{
-//!     optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective, MobiusOptions,
-//!     SphereOptions,
-//! };
-//! # let mesh = conformap_global::doc_support::octahedron_sphere(3);
-//! // `mesh`: a closed genus-0 mesh (here an ellipsoid of 258 vertices)
-//! let map = sphere_map(&mesh, &SphereOptions::DEFAULT)?;
-//! let before = sphere_metrics(&mesh, &map.points)?;
-//! assert!(before.radius_residual_max < 1e-12);
-//! assert_eq!(before.flipped_faces, 0);
-//! // the Möbius map that spreads area most evenly: lower energy, same conformality
-//! let best = optimize_sphere_mobius(&mesh, &map.points, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
-//! let after = sphere_metrics(&mesh, &best.points)?;
-//! assert!(after.uniformity_energy < before.uniformity_energy);
-//! assert!((after.cross_ratio_log.mean_abs - before.cross_ratio_log.mean_abs).abs() < 1e-12);
+//! use conformap_global::{global_map, GlobalMapOptions};
+//! # let torus = conformap_mesh::doc_torus();
+//! // `torus`: a closed genus-1 mesh (a coarse torus of revolution, radii 2 and 1)
+//! let map = global_map(&torus, &GlobalMapOptions::DEFAULT)?;
+//! assert_eq!(map.genus, 1);
+//! assert!(map.seam_residual < 1e-12); // across a seam: a pure translation
+//! assert_eq!(map.zeros.multiplicity_sum, 0); // 2g − 2 zeros on a torus
+//! assert!(map.metrics.image_area > 0.0);
 //! # Ok::<(), conformap_global::GlobalError>(())
 //! ```
 
-mod double_cover;
 mod error;
 mod forms;
-mod mobius;
-mod sphere;
-mod stats;
-mod stereo;
+
 mod topology_opt;
 
-#[doc(hidden)]
-pub mod doc_support;
-
-pub use double_cover::{
-    double_cover, double_cover_disk_map, double_cover_surface, DoubleCover, DoubleCoverDisk,
-    DoubleCoverReport,
-};
 pub use error::GlobalError;
 pub use forms::{
     global_map, reduce_modulus, ConjugateMethod, EmphasisReport, FormSearchOptions, GlobalMap,
     GlobalMapOptions, GlobalTimings, LayoutMetrics, Objective, ObjectiveReport, SeamedLayout,
     UniformSearch, Zero, ZeroAllocationReport, ZeroReport, ZeroTarget, DEFAULT_SEED,
     DEFAULT_STARTS, GRADIENT_TOL, MAX_NEWTON_ITERATIONS, MODULUS_MAX_STEPS, OPTIMUM_MATCH_REL,
-};
-pub use mobius::energy::{
-    disk_region_share, disk_uniformity_energy, region_mask, sphere_region_share,
-    sphere_uniformity_energy, surface_shares,
-};
-pub use mobius::maps::{
-    boost_sphere_point, DiskAutomorphism, Mobius, MobiusCoefficients, MOBIUS_SINGULAR_REL,
-};
-pub use mobius::optimize::{
-    optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusReport, SphereMobius,
-    StartRecord,
-};
-pub use mobius::options::{
-    MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL, MOBIUS_MAX_BOOST,
-    MOBIUS_MAX_ITER, MOBIUS_START_RADIUS, MOBIUS_STEP_TOL,
-};
-pub use sphere::map::{
-    sphere_map, SphereMap, SphereOptions, SPHERE_FIXED_FRACTION, SPHERE_MAX_CORRECTIONS,
-    SPHERE_MIN_GAIN, SPHERE_SOLVE_RESIDUAL_TOL,
-};
-pub use sphere::metrics::{
-    sphere_cross_ratio_distortion, sphere_metrics, SphereMetrics, SPHERE_BELTRAMI_CAP,
-};
-pub use sphere::report::{SphereReport, StageRecord, Timings};
-pub use sphere::source::sphere_source_face;
-pub use stats::{AbsLogStats, AngleStats, LogRatioStats, SummaryStats};
-pub use stereo::{
-    equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
-    inverse_stereographic_south, stereographic, stereographic_south,
 };
 pub use topology_opt::{
     topology_opt, BestLayout, SlitRecord, TopologyOpt, TopologyOptOptions, TopologyStep,

@@ -1,8 +1,6 @@
 //! Topological optimization (issue 23) on small meshes; the shared real meshes in
 //! `#[ignore]`d tests (`cargo test --release -p conformap-global -- --ignored topology`).
 
-mod common;
-
 use conformap_global::{topology_opt, BestLayout, TopologyOptOptions};
 use conformap_mesh::TriMesh;
 
@@ -49,7 +47,7 @@ fn spot_with_eight_slits_beats_the_sphere_map() {
 
 #[test]
 fn a_compact_ellipsoid_keeps_its_sphere_map() {
-    let mesh = conformap_global::doc_support::octahedron_sphere(3);
+    let mesh = conformap_sphere::doc_support::octahedron_sphere(3);
     let r = topology_opt(&mesh, &TopologyOptOptions::DEFAULT).expect("runs");
     assert_eq!(r.best_step, 0);
     assert!(matches!(r.best, BestLayout::Sphere(_)));
@@ -117,7 +115,7 @@ fn a_disk_where_slits_do_not_pay_keeps_its_disk_map() {
 }
 
 fn real(name: &str, max_slits: usize) -> Option<conformap_global::TopologyOpt> {
-    let mesh = common::read(name)?;
+    let mesh = conformap_testkit::read_real_mesh_or_skip(name, name)?;
     Some(
         topology_opt(
             &mesh,

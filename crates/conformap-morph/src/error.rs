@@ -1,8 +1,8 @@
 //! The one error type of conformap-morph.
 
 use conformap_disk::DiskError;
-use conformap_global::GlobalError;
 use conformap_operators::OperatorError;
+use conformap_sphere::SphereError;
 
 /// Why a morph could not be computed. Surfaces are numbered from 0 in the order given
 /// (surface 0 is S1, the one whose connectivity every frame has).
@@ -98,7 +98,7 @@ pub enum MorphError {
         /// 0-based surface.
         surface: usize,
         /// The Möbius code's error.
-        source: GlobalError,
+        source: SphereError,
     },
     /// A factorization or solve of the registration failed (see the inner error).
     #[error("surface {surface}: registration solve failed: {source}")]

@@ -2,7 +2,7 @@
 //! location on the disk, cubic-spline homotopy through 2+ surfaces (CEM §6).
 //!
 //! Depends on `conformap-disk` (the disk map, and its factorization of `L_II`, reused by
-//! the registration), `conformap-global` (the disk automorphisms of the normalization),
+//! the registration), `conformap-sphere` (the disk automorphisms of the normalization),
 //! `conformap-operators` (the dense Cholesky of the landmark system) and
 //! `conformap-mesh`; never touches files and never prints.
 //!

@@ -9,8 +9,8 @@ use conformap_cli::commands::mobius::{Domain, MobiusArgs, Objective};
 use conformap_cli::commands::param::{region_face, MapFile};
 use conformap_cli::failure::Failure;
 use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved};
-use conformap_global::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
 use conformap_mesh::TriMesh;
+use conformap_sphere::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 

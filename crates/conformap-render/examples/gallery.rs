@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use conformap_disk::{compute_disk_map, koebe, DiskMethod, DiskOptions, KoebeOptions};
-use conformap_global::{sphere_map, SphereOptions};
 use conformap_mesh::TriMesh;
 use conformap_render::{
     angle_histogram, histogram_svg, render, ColorBy, MapCoords, RenderOptions, UvValues, View,
 };
+use conformap_sphere::{sphere_map, SphereOptions};
 use conformap_testkit::{read_plain_obj, real_mesh_or_skip};
 
 type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;

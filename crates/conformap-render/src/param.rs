@@ -182,7 +182,7 @@ mod tests {
 
     #[test]
     fn equirectangular_round_trip() {
-        // the inverse of conformap_global::equirectangular_uv
+        // the inverse of conformap_sphere::equirectangular_uv
         let p = from_equirectangular(Complex64::new(0.75, 0.5));
         assert!((p[1] - 1.0).abs() < 1e-15 && p[0].abs() < 1e-15 && p[2].abs() < 1e-15);
         let north = from_equirectangular(Complex64::new(0.3, 1.0));

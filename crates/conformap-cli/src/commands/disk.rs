@@ -6,10 +6,10 @@ use std::time::Instant;
 use clap::{Args, ValueEnum};
 use conformap_disk::{koebe_peak_bytes, unfold_disk_map, ProblemOptions};
 use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem, FactorOrdering};
-use conformap_global::{double_cover_disk_map, SphereOptions};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
+use conformap_sphere::{double_cover_disk_map, SphereOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
@@ -37,7 +37,7 @@ pub enum Method {
 }
 
 impl Method {
-    /// The library's method (`None` for the double cover, which lives in conformap-global).
+    /// The library's method (`None` for the double cover, which lives in conformap-sphere).
     fn library(self) -> Option<DiskMethod> {
         match self {
             Self::CcemQn => Some(DiskMethod::CcemQn),
@@ -314,7 +314,7 @@ impl DiskArgs {
             // a direct method: one stage per sphere-map stage; the residual is Angenent's
             solver: SolverSection::new(
                 r.sphere.stages.len().saturating_sub(1),
-                r.sphere.residual <= conformap_global::SPHERE_SOLVE_RESIDUAL_TOL,
+                r.sphere.residual <= conformap_sphere::SPHERE_SOLVE_RESIDUAL_TOL,
                 r.sphere
                     .stages
                     .iter()

@@ -20,10 +20,9 @@
 //! vertex path, genus of the double covering, energy and its ratio to the starting map's,
 //! log-area spread, folds, time and factorization time).
 
-use conformap_global::{
-    equirectangular_uv, sphere_metrics, topology_opt, BestLayout, TopologyOpt, TopologyOptOptions,
-};
+use conformap_global::{topology_opt, BestLayout, TopologyOpt, TopologyOptOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_sphere::{equirectangular_uv, sphere_metrics};
 use serde_json::json;
 
 use crate::commands::global::{map_solved, FormObjective, GlobalArgs};

@@ -5,14 +5,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use conformap_global::{
+use conformap_mesh::TriMesh;
+use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
+use conformap_operators::PeakMemory;
+use conformap_sphere::{
     equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
     sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
     MAP_RADIUS_TOL,
 };
-use conformap_mesh::TriMesh;
-use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
-use conformap_operators::PeakMemory;
 
 use crate::commands::param::{read_map_file, read_region, MapFile};
 use crate::failure::Failure;
@@ -236,7 +236,7 @@ impl MobiusArgs {
         })
     }
 
-    fn fail(&self, e: conformap_global::GlobalError) -> Failure {
+    fn fail(&self, e: conformap_sphere::SphereError) -> Failure {
         Failure::from(e).in_file(&self.param)
     }
 

@@ -4,12 +4,12 @@
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use conformap_global::{
+use conformap_mesh::TriMesh;
+use conformap_operators::PeakMemory;
+use conformap_sphere::{
     equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
     MobiusOptions, SphereMetrics, SphereOptions, SPHERE_SOLVE_RESIDUAL_TOL,
 };
-use conformap_mesh::TriMesh;
-use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
 use crate::pipeline::{Input, InputArgs, MapCommand, OutputArgs, PictureDomain, Solved};
@@ -69,7 +69,7 @@ impl MapCommand for SphereArgs {
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
-        let fail = |e: conformap_global::GlobalError| input.fail(e.into());
+        let fail = |e: conformap_sphere::SphereError| input.fail(e.into());
         let map = sphere_map(mesh, &SphereOptions::DEFAULT).map_err(fail)?;
         let t = Instant::now();
         let before = sphere_metrics(mesh, &map.points).map_err(fail)?;

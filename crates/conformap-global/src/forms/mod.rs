@@ -18,7 +18,8 @@
 //!   ([`LayoutMetrics`]).
 //! - `optimal/`: the optimal form ([`Objective`]: uniform, least uniform, emphasized area,
 //!   zero allocation) over the coefficient sphere.
-//! - `options.rs`, `global_map.rs`: the entry point [`global_map`] → [`GlobalMap`].
+//! - `options.rs`, `global_map.rs`, `pipeline.rs`: the options, the result [`GlobalMap`], and
+//!   the entry point [`global_map`] with its steps.
 //! - `seamed.rs`: [`SeamedLayout`], the layout as a file writes it (per-corner texture
 //!   coordinates in the unit square).
 
@@ -32,6 +33,7 @@ mod layout;
 mod optimal;
 mod options;
 mod periods;
+mod pipeline;
 mod quality;
 mod seamed;
 mod zeros;
@@ -40,8 +42,7 @@ mod zeros;
 mod tests;
 
 pub use conjugate::ConjugateMethod;
-pub(crate) use global_map::global_map_ranked;
-pub use global_map::{global_map, GlobalMap, GlobalTimings};
+pub use global_map::{GlobalMap, GlobalTimings};
 pub use optimal::{
     EmphasisReport, FormSearchOptions, Objective, ObjectiveReport, UniformSearch,
     ZeroAllocationReport, ZeroTarget, DEFAULT_SEED, DEFAULT_STARTS, GRADIENT_TOL,
@@ -49,6 +50,8 @@ pub use optimal::{
 };
 pub use options::GlobalMapOptions;
 pub use periods::{reduce_modulus, MODULUS_MAX_STEPS};
+pub use pipeline::global_map;
+pub(crate) use pipeline::global_map_ranked;
 pub use quality::LayoutMetrics;
 pub use seamed::SeamedLayout;
 pub use zeros::{Zero, ZeroReport};

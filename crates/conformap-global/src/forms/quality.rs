@@ -7,9 +7,9 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::forms::zeros::{signed_angle, signed_area};
-use crate::stats::{angle_stats, log_ratio_stats};
-use crate::{AngleStats, LogRatioStats};
+use crate::forms::zeros::signed_angle;
+use conformap_metrics::{angle_stats, log_ratio_stats, AngleStats, LogRatioStats};
+use conformap_operators::planar::triangle_signed_area;
 
 /// Faces per parallel block of [`layout_metrics`]: ~1 ms of trigonometry, far more than a
 /// task hand-off.
@@ -37,7 +37,7 @@ pub struct LayoutMetrics {
 /// Signed layout area of each face.
 pub fn layout_areas(corner_uv: &[Complex64], faces: usize) -> Vec<f64> {
     (0..faces)
-        .map(|f| signed_area(corner_uv[3 * f], corner_uv[3 * f + 1], corner_uv[3 * f + 2]))
+        .map(|f| triangle_signed_area(corner_uv[3 * f], corner_uv[3 * f + 1], corner_uv[3 * f + 2]))
         .collect()
 }
 

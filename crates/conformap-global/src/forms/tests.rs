@@ -230,6 +230,6 @@ fn sparse_wedge_and_gram_match_the_harmonic_forms_pairwise_sums() {
     let eightsim = read_plain_obj(&fixture_path("eightsim.obj")).expect("eightsim");
     check_sparse_products(&eightsim, None);
     let halftunnel = read_plain_obj(&fixture_path("halftunnel.obj")).expect("halftunnel");
-    let dc = crate::double_cover::double_cover_surface(&halftunnel).expect("covering");
+    let dc = conformap_sphere::double_cover_surface(&halftunnel).expect("covering");
     check_sparse_products(&dc.mesh, Some((dc.mirror, dc.split_vertices)));
 }

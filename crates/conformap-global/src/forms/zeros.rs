@@ -12,6 +12,7 @@
 //! multiplicity ≤ 0 is a defect.
 
 use conformap_mesh::{EdgeIndex, TriMesh};
+use conformap_operators::planar::triangle_signed_area;
 use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -59,12 +60,6 @@ pub struct ZeroReport {
 pub(crate) fn signed_angle(p0: Complex64, p1: Complex64, p2: Complex64) -> f64 {
     let (u, v) = (p1 - p0, p2 - p0);
     (u.re * v.im - u.im * v.re).atan2(u.re * v.re + u.im * v.im)
-}
-
-/// Signed area of triangle `(p0, p1, p2)`.
-pub(crate) fn signed_area(p0: Complex64, p1: Complex64, p2: Complex64) -> f64 {
-    let (u, v) = (p1 - p0, p2 - p0);
-    0.5 * (u.re * v.im - u.im * v.re)
 }
 
 /// Per vertex, the mean of `|φ(e)| / |e|` over its edges: the stretch of the layout,
@@ -119,7 +114,7 @@ pub fn find_zeros(mesh: &TriMesh, corner_uv: &[Complex64], stretch: &[f64]) -> Z
         .map(|f| {
             let p = [corner_uv[3 * f], corner_uv[3 * f + 1], corner_uv[3 * f + 2]];
             let a = [0, 1, 2].map(|k| signed_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]));
-            (a, !(signed_area(p[0], p[1], p[2]) > 0.0))
+            (a, !(triangle_signed_area(p[0], p[1], p[2]) > 0.0))
         })
         .collect();
     let mut angle = vec![0.0; n];

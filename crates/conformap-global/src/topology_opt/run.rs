@@ -11,19 +11,19 @@ use conformap_operators::{
 use serde::{Deserialize, Serialize};
 
 use crate::forms::{global_map, global_map_ranked, GlobalMap};
-use crate::mobius::energy::{
-    planar_face_areas, planar_signed_area, sphere_face_areas, surface_shares,
-};
-use crate::mobius::optimize::{optimize_disk_mobius, optimize_sphere_mobius};
-use crate::mobius::options::{MobiusObjective, MobiusOptions};
-use crate::sphere::map::{sphere_map, SphereOptions};
-use crate::stats::log_ratio_stats;
 use crate::topology_opt::clusters::{
     extreme_clusters, extreme_threshold, vertex_log_area_ratio, Cluster,
 };
 use crate::topology_opt::options::TopologyOptOptions;
-use crate::{GlobalError, LogRatioStats};
+use crate::GlobalError;
 use conformap_disk::{compute_disk_map, DiskMethod, DiskOptions};
+use conformap_metrics::{log_ratio_stats, LogRatioStats};
+use conformap_operators::planar::triangle_signed_area;
+use conformap_operators::vec3::{cross, dot};
+use conformap_sphere::{
+    optimize_disk_mobius, optimize_sphere_mobius, planar_face_areas, sphere_face_areas, sphere_map,
+    surface_shares, uniformity_from_areas, MobiusObjective, MobiusOptions, SphereOptions,
+};
 
 /// Cluster vertices tried as a slit centre, nearest to the cluster's centre first: `8`.
 /// The nearest is the paper's extreme point; when it is blocked (next to an earlier slit)
@@ -190,7 +190,7 @@ fn measure_global(
     shares: &[f64],
 ) -> Measured {
     let uv = map.input_corner_uv();
-    let piece = |f: usize| planar_signed_area([uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]);
+    let piece = |f: usize| triangle_signed_area(uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]);
     let image: Vec<f64> = if map.split_edges == 0 {
         (0..mesh.num_faces()).map(piece).collect()
     } else {
@@ -217,7 +217,7 @@ fn measure_global(
         added: Vec::new(),
         slits: 0,
         surface_genus: map.surface_genus,
-        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
+        energy: uniformity_from_areas(&image, shares),
         ratio_to_start: 1.0,
         area_distortion_log: area_stats(&image, shares),
         folds_at_zeros: at,
@@ -379,13 +379,13 @@ fn start(
         &MobiusObjective::Uniform,
         &MobiusOptions::DEFAULT,
     )?;
-    let image = sphere_face_areas(mesh, &best.points);
+    let image = sphere_face_areas(mesh, &best.points)?;
     let inverted = mesh
         .faces()
         .iter()
         .filter(|t| {
             let [a, b, c] = t.map(|v| best.points[v as usize]);
-            crate::stereo::dot(a, crate::stereo::cross(b, c)) <= 0.0
+            dot(a, cross(b, c)) <= 0.0
         })
         .count();
     let factor_ms = map.report.timings_ms.factor;
@@ -407,7 +407,7 @@ fn start_measured(
         added: Vec::new(),
         slits: 0,
         surface_genus: 0,
-        energy: crate::mobius::energy::uniformity_from_areas(&image, shares),
+        energy: uniformity_from_areas(&image, shares),
         ratio_to_start: 1.0,
         area_distortion_log: area_stats(&image, shares),
         folds_at_zeros: 0,
@@ -439,7 +439,7 @@ fn start_disk(mesh: &TriMesh, shares: &[f64]) -> Result<(Measured, BestLayout), 
         &MobiusObjective::Uniform,
         &MobiusOptions::DEFAULT,
     )?;
-    let image = planar_face_areas(mesh, &best.map);
+    let image = planar_face_areas(mesh, &best.map)?;
     let folded = image.iter().filter(|a| **a <= 0.0).count();
     let factor_ms = disk.report.timings_ms.factor;
     let measured = start_measured(mesh, image, shares, folded, ms(t), factor_ms);
@@ -461,7 +461,7 @@ fn start_disk(mesh: &TriMesh, shares: &[f64]) -> Result<(Measured, BestLayout), 
 /// # Errors
 /// [`GlobalError::WrongTopology`] for several components;
 /// [`GlobalError::InvalidOption`] for a slit length that is not positive and finite;
-/// the errors of the starting map ([`crate::sphere_map`], [`GlobalError::Disk`],
+/// the errors of the starting map ([`conformap_sphere::sphere_map`], [`GlobalError::Disk`],
 /// [`global_map`]). A failed map of
 /// a slit surface ends the loop instead (see [`TopologyOpt::stop`]).
 pub fn topology_opt(

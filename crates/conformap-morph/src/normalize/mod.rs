@@ -4,7 +4,7 @@
 //! worth of position (the centre and a direction), and the registration only has to
 //! correct what the conformal maps disagree on.
 
-use conformap_global::DiskAutomorphism;
+use conformap_sphere::DiskAutomorphism;
 use num_complex::Complex64;
 
 use crate::MorphError;

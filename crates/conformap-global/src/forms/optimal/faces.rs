@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use crate::forms::blocked::{times_small_in_place, transpose_times};
 use crate::forms::cohomology::Cochain;
 use crate::forms::dense::{symmetric_eigen, symmetric_function};
-use crate::forms::optimal::moments::Aggregates;
+use crate::forms::optimal::aggregates::Aggregates;
 #[cfg(test)]
 use crate::forms::periods::ComplexCochain;
 use crate::GlobalError;

@@ -18,6 +18,7 @@
 //! no form vanishes at all of them and the Rayleigh quotient's minimum is the compromise.
 
 use conformap_mesh::{EdgeIndex, TriMesh};
+use conformap_operators::vec3::{cross, dot, sub};
 use num_complex::Complex64;
 
 use crate::forms::dense::symmetric_eigen;
@@ -33,15 +34,6 @@ pub fn vertex_values(
     v: usize,
 ) -> Vec<Complex64> {
     let pos = mesh.positions();
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     // the area-weighted normal of the star, oriented as the faces are
     let mut normal = [0.0; 3];
     for t in mesh.faces() {

@@ -261,7 +261,7 @@ fn compass_max(f: impl Fn(&[f64]) -> f64, start: &[f64]) -> f64 {
 fn emphasized_half_matches_sampling_and_brute_force_on_eightsim() {
     let mesh = eightsim();
     let half = half_region(&mesh, mesh.num_faces());
-    let mask = crate::region_mask(mesh.num_faces(), &half).unwrap();
+    let mask = conformap_sphere::region_mask(mesh.num_faces(), &half).unwrap();
     for maximize in [true, false] {
         let objective = Objective::Emphasize {
             faces: half.clone(),

@@ -17,8 +17,9 @@
 //! area forms of `products.rs`, an independent check.
 
 use crate::forms::dense::symmetric_eigen;
+use crate::forms::optimal::aggregates::Aggregates;
 use crate::forms::optimal::faces::FaceForms;
-use crate::forms::optimal::moments::{Aggregates, Moments};
+use crate::forms::optimal::moments::Moments;
 #[cfg(test)]
 use crate::forms::optimal::products::AreaProducts;
 

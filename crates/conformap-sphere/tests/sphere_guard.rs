@@ -3,8 +3,8 @@
 //! neighbours like a scan's folded sliver) gets an inverted face from the cotangent
 //! Laplacian, and none after the guard re-solves with the intrinsic Delaunay Laplacian.
 
-use conformap_global::{sphere_map, sphere_metrics, SphereOptions};
 use conformap_mesh::TriMesh;
+use conformap_sphere::{sphere_map, sphere_metrics, SphereOptions};
 use conformap_testkit::icosphere;
 
 /// The icosphere with vertex `v` moved past its first neighbour `w` by `t` times their

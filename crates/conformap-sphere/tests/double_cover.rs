@@ -2,8 +2,8 @@
 
 mod common;
 
-use conformap_global::{double_cover, double_cover_disk_map, GlobalError, SphereOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_sphere::{double_cover, double_cover_disk_map, SphereError, SphereOptions};
 
 #[test]
 fn double_cover_of_woody_matches_cem_quality() {
@@ -45,6 +45,6 @@ fn closed_meshes_have_no_double_cover() {
     let s = conformap_testkit::icosphere(1.0, 1);
     assert!(matches!(
         double_cover(&s),
-        Err(GlobalError::WrongTopology { .. })
+        Err(SphereError::WrongTopology { .. })
     ));
 }

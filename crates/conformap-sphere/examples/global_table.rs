@@ -2,20 +2,20 @@
 //! absent). Run in release:
 //!
 //! ```text
-//! cargo run --release -p conformap-global --example global_table -- sphere  # class c
-//! cargo run --release -p conformap-global --example global_table -- disk    # class a: CEM + Möbius
-//! cargo run --release -p conformap-global --example global_table -- cover   # double cover vs CEM
-//! cargo run --release -p conformap-global --example global_table -- methods # all disk methods
+//! cargo run --release -p conformap-sphere --example global_table -- sphere  # class c
+//! cargo run --release -p conformap-sphere --example global_table -- disk    # class a: CEM + Möbius
+//! cargo run --release -p conformap-sphere --example global_table -- cover   # double cover vs CEM
+//! cargo run --release -p conformap-sphere --example global_table -- methods # all disk methods
 //! ```
 //! Extra arguments after the mode replace the default mesh list.
 
 use std::time::Instant;
 
-use conformap_global::{
+use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_sphere::{
     double_cover_disk_map, optimize_disk_mobius, optimize_sphere_mobius, sphere_map,
     sphere_metrics, DiskAutomorphism, MobiusObjective, MobiusOptions, SphereOptions,
 };
-use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_testkit::{CLASS_A, CLASS_C};
 use num_complex::Complex64;
 

@@ -8,7 +8,7 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 
 use crate::mobius::maps::{half_tanh_ratio, half_tanh_ratio_dt_over_t};
-use crate::stereo::{cross, norm, sub};
+use conformap_operators::vec3::{cross, dot, norm, sub};
 
 /// Faces per rayon task: large enough that scheduling costs nothing next to the work
 /// (about 50 µs of it), small enough to split a 10k-face mesh over a few cores.
@@ -123,13 +123,13 @@ impl<'a> SphereProblem<'a> {
     pub fn boosted(&self, u: &[f64]) -> Vec<[f64; 3]> {
         let g = half_tanh_ratio(u.iter().map(|x| x * x).sum::<f64>().sqrt());
         let al = [g * u[0], g * u[1], g * u[2]];
-        let r = 1.0 - (al[0] * al[0] + al[1] * al[1] + al[2] * al[2]);
+        let r = 1.0 - dot(al, al);
         self.points
             .par_iter()
             .with_min_len(PAR_CHUNK)
             .map(|x| {
                 let d = sub(*x, al);
-                let s = r / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                let s = r / dot(d, d);
                 [s * d[0] - al[0], s * d[1] - al[1], s * d[2] - al[2]]
             })
             .collect()
@@ -146,7 +146,7 @@ impl<'a> SphereProblem<'a> {
         let t = u.iter().map(|x| x * x).sum::<f64>().sqrt();
         let g = half_tanh_ratio(t);
         let al = [g * u[0], g * u[1], g * u[2]];
-        let r = 1.0 - (al[0] * al[0] + al[1] * al[1] + al[2] * al[2]);
+        let r = 1.0 - dot(al, al);
         let (points, faces) = (self.points, self.faces);
         let mut scratch = self.scratch.borrow_mut();
         let (yq, areas) = &mut *scratch;
@@ -192,7 +192,7 @@ impl<'a> SphereProblem<'a> {
 fn boost_chunk(out: &mut [[f64; 4]], points: &[[f64; 3]], (al, r): ([f64; 3], f64)) {
     for (o, x) in out.iter_mut().zip(points) {
         let d = sub(*x, al);
-        let iq = 1.0 / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        let iq = 1.0 / dot(d, d);
         let s = r * iq;
         *o = [s * d[0] - al[0], s * d[1] - al[1], s * d[2] - al[2], iq];
     }
@@ -245,7 +245,7 @@ fn gradient_chunk(
             let v = f[k] as usize;
             let d = sub(points[v], al);
             let iq = yq[v][3];
-            let dc = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+            let dc = dot(d, c);
             let (c2, c3) = (-(r * iq + 1.0), 2.0 * r * dc * iq * iq);
             acc[0] -= 2.0 * dc * iq;
             for j in 0..3 {
@@ -324,7 +324,7 @@ impl DiskProblemM<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stereo::normalize;
+    use conformap_operators::vec3::normalize;
 
     fn fd_check(eval: &crate::mobius::newton::EvalFn<'_>, x: &[f64]) {
         let (_, g) = eval(x);

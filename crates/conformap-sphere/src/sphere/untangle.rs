@@ -8,6 +8,7 @@ use conformap_mesh::TriMesh;
 use sprs::CsMat;
 
 use crate::stereo::det3;
+use conformap_operators::vec3::norm;
 
 /// Untangling rounds at most: 50 (each costs a pass over the faces; a planted fold of the
 /// tests untangles in 1–5).
@@ -64,7 +65,7 @@ pub(crate) fn untangle(
                     s[k] += w * points[u][k];
                 }
             }
-            let r = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+            let r = norm(s);
             if r > 0.0 && r.is_finite() {
                 points[v] = [s[0] / r, s[1] / r, s[2] / r];
             }

@@ -3,9 +3,9 @@
 mod common;
 
 use common::{norm, Lcg};
-use conformap_global::{
-    optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics, DiskAutomorphism, GlobalError,
-    Mobius, MobiusObjective, MobiusOptions,
+use conformap_sphere::{
+    optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics, DiskAutomorphism, Mobius,
+    MobiusObjective, MobiusOptions, SphereError,
 };
 use num_complex::Complex64;
 
@@ -73,7 +73,7 @@ fn disk_automorphisms_keep_the_circle_and_the_disk() {
     // a map with |b| ≥ |a| does not keep the disk and is refused
     assert!(matches!(
         DiskAutomorphism::try_new(Complex64::new(1.0, 0.0), Complex64::new(0.0, 2.0)),
-        Err(GlobalError::SingularMobius { .. })
+        Err(SphereError::SingularMobius { .. })
     ));
 }
 
@@ -81,7 +81,7 @@ fn disk_automorphisms_keep_the_circle_and_the_disk() {
 /// cross-ratios) does not move; the chord-triangle angles move by O(h |∇ log λ|).
 #[test]
 fn mobius_maps_keep_cross_ratios_exactly() {
-    let mesh = conformap_global::doc_support::octahedron_sphere(3);
+    let mesh = conformap_sphere::doc_support::octahedron_sphere(3);
     let base: Vec<[f64; 3]> = mesh
         .positions()
         .iter()
@@ -194,12 +194,12 @@ fn emphasis_grows_the_region_up_to_the_cap() {
     };
     assert!(matches!(
         optimize_disk_mobius(&disk, &z, &bad, &MobiusOptions::DEFAULT),
-        Err(GlobalError::RegionFaceOutOfRange { .. })
+        Err(SphereError::RegionFaceOutOfRange { .. })
     ));
     let empty = MobiusObjective::Emphasize { region: vec![] };
     assert!(matches!(
         optimize_disk_mobius(&disk, &z, &empty, &MobiusOptions::DEFAULT),
-        Err(GlobalError::DegenerateRegion { .. })
+        Err(SphereError::DegenerateRegion { .. })
     ));
 }
 
@@ -214,7 +214,7 @@ fn maps_off_the_domain_are_refused() {
     );
     assert!(matches!(
         err,
-        Err(GlobalError::NotOnSphere { vertex: 0, .. })
+        Err(SphereError::NotOnSphere { vertex: 0, .. })
     ));
     let disk = conformap_testkit::flat_disk(3, 6);
     let z: Vec<Complex64> = disk
@@ -228,5 +228,5 @@ fn maps_off_the_domain_are_refused() {
         &MobiusObjective::Uniform,
         &MobiusOptions::DEFAULT,
     );
-    assert!(matches!(err, Err(GlobalError::NotInDisk { .. })));
+    assert!(matches!(err, Err(SphereError::NotInDisk { .. })));
 }

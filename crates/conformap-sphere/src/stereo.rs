@@ -1,5 +1,6 @@
 //! Stereographic projection between the unit sphere and the extended complex plane, and
-//! small 3-vector helpers.
+//! the oriented volume `det3` of the inverted-face tests (the plain 3-vector arithmetic is
+//! `conformap_operators::vec3`'s).
 //!
 //! Convention (Jin et al. 2004, §3.4): `τ(x, y, z) = (x + i y) / (1 − z)`, projecting from
 //! the north pole `(0, 0, 1)`, which goes to `∞`; the south pole goes to `0` and the
@@ -7,6 +8,7 @@
 //! from the south pole with the same orientation (a holomorphic change of chart), so a
 //! conformal map looks conformal in both.
 
+use conformap_operators::vec3::{cross, dot, normalize, sub};
 use num_complex::Complex64;
 
 /// A point of the extended complex plane in homogeneous coordinates `[z1 : z2]`
@@ -49,7 +51,7 @@ pub fn inverse_stereographic_south(w: Complex64) -> [f64; 3] {
 ///
 /// # Examples
 /// ```
-/// let uv = conformap_global::equirectangular_uv([0.0, 1.0, 0.0]);
+/// let uv = conformap_sphere::equirectangular_uv([0.0, 1.0, 0.0]);
 /// assert!((uv[0] - 0.75).abs() < 1e-15 && (uv[1] - 0.5).abs() < 1e-15);
 /// ```
 pub fn equirectangular_uv(p: [f64; 3]) -> [f64; 2] {
@@ -63,7 +65,7 @@ pub fn equirectangular_uv(p: [f64; 3]) -> [f64; 2] {
 ///
 /// # Examples
 /// ```
-/// use conformap_global::{equirectangular_uv, from_equirectangular_uv};
+/// use conformap_sphere::{equirectangular_uv, from_equirectangular_uv};
 /// let p = [0.48, -0.6, 0.64];
 /// let q = from_equirectangular_uv(equirectangular_uv(p));
 /// assert!((0..3).all(|k| (p[k] - q[k]).abs() < 1e-15));
@@ -95,47 +97,10 @@ pub(crate) fn from_homogeneous(h: Homogeneous) -> [f64; 3] {
     normalize([2.0 * s.re, 2.0 * s.im, a - b])
 }
 
-/// `p / |p|` (the zero vector stays zero).
-#[inline]
-pub(crate) fn normalize(p: [f64; 3]) -> [f64; 3] {
-    let r = norm(p);
-    if r > 0.0 {
-        [p[0] / r, p[1] / r, p[2] / r]
-    } else {
-        p
-    }
-}
-
-/// Euclidean length.
-#[inline]
-pub(crate) fn norm(p: [f64; 3]) -> f64 {
-    dot(p, p).sqrt()
-}
-
-/// Dot product.
-#[inline]
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Difference `a − b`.
-#[inline]
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// Cross product.
-#[inline]
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// `det[a, b, c] = a · (b × c)`, evaluated as `a · ((b − a) × (c − a))` (equal, and free of
-/// the cancellation the plain form suffers for a tiny triangle far from the origin).
+/// the cancellation the plain form suffers for a tiny triangle far from the origin). Kept
+/// here rather than in `conformap_operators::vec3`: it is not the plain triple product, and
+/// the inverted-face tests of the sphere map depend on this rounding.
 #[inline]
 pub(crate) fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     dot(a, cross(sub(b, a), sub(c, a)))
@@ -144,6 +109,7 @@ pub(crate) fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use conformap_operators::vec3::norm;
 
     #[test]
     fn projections_invert_each_other() {

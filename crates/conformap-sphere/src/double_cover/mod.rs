@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 use crate::mobius::maps::boost_sphere_point;
 use crate::sphere::map::{sphere_map, SphereOptions};
 use crate::sphere::source::{centre_vertex, regular_face_around};
-use crate::stereo::{cross, dot, normalize};
-use crate::{GlobalError, SphereReport};
+use crate::{SphereError, SphereReport};
+use conformap_operators::vec3::{cross, dot, normalize};
 
 /// A double covering of a disk mesh.
 ///
@@ -43,12 +43,12 @@ pub struct DoubleCover {
 /// into four): glued, such an edge would lie on four faces.
 ///
 /// # Errors
-/// [`GlobalError::WrongTopology`] unless the mesh is a disk; [`GlobalError::Mesh`] if the
+/// [`SphereError::WrongTopology`] unless the mesh is a disk; [`SphereError::Mesh`] if the
 /// covering fails validation.
 ///
 /// # Examples
 /// ```
-/// use conformap_global::double_cover;
+/// use conformap_sphere::double_cover;
 /// let disk = conformap_mesh::TriMesh::try_new(
 ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]],
 ///     vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]],
@@ -56,12 +56,12 @@ pub struct DoubleCover {
 /// let dc = double_cover(&disk)?;
 /// assert_eq!(dc.mesh.num_vertices(), 6); // 4 boundary vertices + 2 copies of the centre
 /// assert_eq!(dc.mesh.topology(), conformap_mesh::Topology::Sphere);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
-pub fn double_cover(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
+pub fn double_cover(mesh: &TriMesh) -> Result<DoubleCover, SphereError> {
     let found = mesh.topology();
     if found != Topology::Disk {
-        return Err(GlobalError::WrongTopology {
+        return Err(SphereError::WrongTopology {
             operation: "a double covering",
             expected: "a disk (genus 0, one boundary loop)",
             found,
@@ -76,11 +76,11 @@ pub fn double_cover(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
 /// boundary). Same vertex and face numbering as [`double_cover`].
 ///
 /// # Errors
-/// [`GlobalError::WrongTopology`] unless the mesh is connected with at least one boundary
-/// loop; [`GlobalError::Mesh`] if the covering fails validation.
-pub fn double_cover_surface(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
+/// [`SphereError::WrongTopology`] unless the mesh is connected with at least one boundary
+/// loop; [`SphereError::Mesh`] if the covering fails validation.
+pub fn double_cover_surface(mesh: &TriMesh) -> Result<DoubleCover, SphereError> {
     if mesh.num_components() != 1 || mesh.boundary_loops().is_empty() {
-        return Err(GlobalError::WrongTopology {
+        return Err(SphereError::WrongTopology {
             operation: "a double covering",
             expected: "a connected surface with at least one boundary loop",
             found: mesh.topology(),
@@ -90,7 +90,7 @@ pub fn double_cover_surface(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> 
 }
 
 /// Glues two copies of `mesh` along all its boundary loops.
-fn build_double_cover(mesh: &TriMesh) -> Result<DoubleCover, GlobalError> {
+fn build_double_cover(mesh: &TriMesh) -> Result<DoubleCover, SphereError> {
     let (positions, faces, split_edges) = split_boundary_chords(mesh);
     let n = positions.len();
     let mut is_boundary = vec![false; n];
@@ -243,12 +243,12 @@ pub struct DoubleCoverReport {
 ///    from the covering alone.
 ///
 /// # Errors
-/// As [`double_cover`] and [`sphere_map`]; [`GlobalError::Operator`] if the disk's
+/// As [`double_cover`] and [`sphere_map`]; [`SphereError::Operator`] if the disk's
 /// interior Laplacian cannot be factored.
 ///
 /// # Examples
 /// ```
-/// use conformap_global::{double_cover_disk_map, SphereOptions};
+/// use conformap_sphere::{double_cover_disk_map, SphereOptions};
 /// # let mesh = conformap_testkit::flat_disk(6, 12);
 /// // a flat disk mesh: its conformal map is a disk automorphism, which keeps every angle
 /// let out = double_cover_disk_map(&mesh, &SphereOptions::DEFAULT)?;
@@ -256,12 +256,12 @@ pub struct DoubleCoverReport {
 ///     assert!((out.map[v as usize].norm() - 1.0).abs() < 1e-12);
 /// }
 /// assert!(out.report.symmetry_defect_max < 1e-2);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
 pub fn double_cover_disk_map(
     mesh: &TriMesh,
     options: &SphereOptions,
-) -> Result<DoubleCoverDisk, GlobalError> {
+) -> Result<DoubleCoverDisk, SphereError> {
     let t0 = Instant::now();
     let dc = double_cover(mesh)?;
     // the dipole goes at the centre of the first copy, away from the fold
@@ -337,7 +337,7 @@ pub fn double_cover_disk_map(
         .iter()
         .position(|z| !(z.re.is_finite() && z.im.is_finite()))
     {
-        return Err(GlobalError::NonFinite {
+        return Err(SphereError::NonFinite {
             vertex: v,
             stage: "double-cover projection",
         });
@@ -444,10 +444,10 @@ fn smallest_eigenvector(mut a: [[f64; 3]; 3]) -> [f64; 3] {
 }
 
 /// The disk crate's errors that [`conformap_disk::DiskProblem::new`] can raise on a disk.
-fn disk_error(e: conformap_disk::DiskError) -> GlobalError {
+fn disk_error(e: conformap_disk::DiskError) -> SphereError {
     match e {
-        conformap_disk::DiskError::Operator(o) => GlobalError::Operator(o),
-        _ => GlobalError::NonFinite {
+        conformap_disk::DiskError::Operator(o) => SphereError::Operator(o),
+        _ => SphereError::NonFinite {
             vertex: 0,
             stage: "disk problem of the double covering",
         },

@@ -2,13 +2,13 @@
 //! (normal along x) and report the image-area share the emphasized half gets, for the
 //! capped share objective (Eq. 10) at several caps and for the log-density objective.
 //!
-//! `cargo run --release -p conformap-global --example emphasize -- spot.obj david_head.obj`
+//! `cargo run --release -p conformap-sphere --example emphasize -- spot.obj david_head.obj`
 //! (file names in `fixtures/` or `../shared/meshes/`).
 
-use conformap_global::{
+use conformap_operators::face_areas;
+use conformap_sphere::{
     optimize_sphere_mobius, sphere_map, MobiusObjective, MobiusOptions, SphereOptions,
 };
-use conformap_operators::face_areas;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let names: Vec<String> = std::env::args().skip(1).collect();

@@ -99,7 +99,8 @@ fn dijkstra(mesh: &TriMesh, adj: &conformap_mesh::Adjacency, source: usize) -> V
         }
         for &w in adj.neighbors_of(v) {
             let w = w as usize;
-            let nd = d + crate::stereo::norm(crate::stereo::sub(pos[v], pos[w]));
+            let nd =
+                d + conformap_operators::vec3::norm(conformap_operators::vec3::sub(pos[v], pos[w]));
             if nd < dist[w] {
                 dist[w] = nd;
                 heap.push(Reverse((nd.to_bits(), w)));

@@ -7,12 +7,13 @@ use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::mobius::energy::{check_len, chord_area, surface_shares, uniformity_from_areas};
-use crate::stats::{
-    abs_log_stats, angle_stats, log_ratio_stats, summary, AbsLogStats, AngleStats, LogRatioStats,
-    SummaryStats,
+use crate::stereo::{det3, stereographic, stereographic_south};
+use crate::SphereError;
+use conformap_metrics::{
+    abs_log_stats, angle_stats, log_ratio_stats, summary_stats as summary, AbsLogStats, AngleStats,
+    LogRatioStats, SummaryStats,
 };
-use crate::stereo::{det3, norm, stereographic, stereographic_south};
-use crate::GlobalError;
+use conformap_operators::vec3::norm;
 
 /// `|μ|` reported for a face whose chart image has `f_z = 0` (exactly anti-conformal):
 /// `1e12`, finite so the report stays valid JSON; only inverted faces can reach it.
@@ -60,11 +61,11 @@ pub struct SphereMetrics {
 /// Every metric of [`SphereMetrics`] for a sphere map (`points[v]` = image of vertex `v`).
 ///
 /// # Errors
-/// [`GlobalError::MapLength`] or [`GlobalError::NonFiniteMap`].
+/// [`SphereError::MapLength`] or [`SphereError::NonFiniteMap`].
 ///
 /// # Examples
 /// ```
-/// use conformap_global::sphere_metrics;
+/// use conformap_sphere::sphere_metrics;
 /// // the octahedron on the unit sphere, mapped by the identity
 /// let p = vec![[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
 ///              [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
@@ -76,10 +77,10 @@ pub struct SphereMetrics {
 /// assert!(m.angle_distortion_deg.max < 1e-12 && m.uniformity_energy < 1e-30);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn sphere_metrics(mesh: &TriMesh, points: &[[f64; 3]]) -> Result<SphereMetrics, GlobalError> {
+pub fn sphere_metrics(mesh: &TriMesh, points: &[[f64; 3]]) -> Result<SphereMetrics, SphereError> {
     check_len(mesh, points.len())?;
     if let Some(v) = points.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
-        return Err(GlobalError::NonFiniteMap { vertex: v });
+        return Err(SphereError::NonFiniteMap { vertex: v });
     }
     let radius_residual_max = points
         .iter()
@@ -120,7 +121,7 @@ pub fn sphere_metrics(mesh: &TriMesh, points: &[[f64; 3]]) -> Result<SphereMetri
         .map(|&f| ((image_areas[f] / total_image) / (mesh_areas[f] / total_mesh)).ln())
         .collect();
     let cross = conformap_metrics::cross_ratio_logs(mesh, |a, b| {
-        norm(crate::stereo::sub(points[a], points[b]))
+        norm(conformap_operators::vec3::sub(points[a], points[b]))
     });
     Ok(SphereMetrics {
         radius_residual_max,
@@ -154,12 +155,12 @@ fn chart_beltrami(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> f64 {
 /// conformap-metrics; 0 for a similarity, > 1 for an inverted image), capped at
 /// [`SPHERE_BELTRAMI_CAP`].
 pub(crate) fn beltrami_abs(p: [[f64; 3]; 3], f: [Complex64; 3]) -> f64 {
-    let e1 = crate::stereo::sub(p[1], p[0]);
-    let e2 = crate::stereo::sub(p[2], p[0]);
+    let e1 = conformap_operators::vec3::sub(p[1], p[0]);
+    let e2 = conformap_operators::vec3::sub(p[2], p[0]);
     let w1 = norm(e1);
     let w2 = Complex64::new(
-        crate::stereo::dot(e1, e2) / w1,
-        norm(crate::stereo::cross(e1, e2)) / w1,
+        conformap_operators::vec3::dot(e1, e2) / w1,
+        norm(conformap_operators::vec3::cross(e1, e2)) / w1,
     );
     let (d1, d2) = (f[1] - f[0], f[2] - f[0]);
     let num = d2 * w1 - d1 * w2;
@@ -180,14 +181,14 @@ pub(crate) fn beltrami_abs(p: [[f64; 3]; 3], f: [Complex64; 3]) -> f64 {
 /// [`conformap_metrics::cross_ratio_distortion`].
 ///
 /// # Errors
-/// [`GlobalError::MapLength`].
+/// [`SphereError::MapLength`].
 pub fn sphere_cross_ratio_distortion(
     mesh: &TriMesh,
     points: &[[f64; 3]],
-) -> Result<AbsLogStats, GlobalError> {
+) -> Result<AbsLogStats, SphereError> {
     check_len(mesh, points.len())?;
     Ok(abs_log_stats(&conformap_metrics::cross_ratio_logs(
         mesh,
-        |a, b| norm(crate::stereo::sub(points[a], points[b])),
+        |a, b| norm(conformap_operators::vec3::sub(points[a], points[b])),
     )))
 }

@@ -26,8 +26,8 @@ use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::mobius::energy::{
-    check_len, planar_face_areas, planar_signed_area, region_mask, region_share_from_areas,
-    sphere_face_areas, surface_shares, uniformity_from_areas,
+    check_len, chord_areas, planar_areas, planar_signed_area, region_mask, region_share_from_areas,
+    surface_shares, uniformity_from_areas,
 };
 use crate::mobius::locality::Renumbered;
 use crate::mobius::maps::{DiskAutomorphism, Mobius, MobiusCoefficients};
@@ -37,8 +37,8 @@ use crate::mobius::objective::{DiskProblemM, SphereProblem, Target};
 use crate::mobius::options::{
     MobiusObjective, MobiusOptions, EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL,
 };
-use crate::stereo::{norm, normalize};
-use crate::GlobalError;
+use crate::SphereError;
+use conformap_operators::vec3::{norm, normalize};
 
 /// One start of the optimizer.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -178,15 +178,15 @@ fn prepare(
     mesh: &TriMesh,
     objective: &MobiusObjective,
     options: &MobiusOptions,
-) -> Result<Prepared, GlobalError> {
+) -> Result<Prepared, SphereError> {
     if !(options.start_radius >= 0.0 && options.start_radius.is_finite()) {
-        return Err(GlobalError::InvalidOption {
+        return Err(SphereError::InvalidOption {
             name: "start_radius",
             reason: "must be a finite number ≥ 0",
         });
     }
     if !(options.step_tol > 0.0) {
-        return Err(GlobalError::InvalidOption {
+        return Err(SphereError::InvalidOption {
             name: "step_tol",
             reason: "must be positive",
         });
@@ -196,7 +196,7 @@ fn prepare(
         if options.max_boost > 0.0 && options.max_boost.is_finite() {
             Ok(options.max_boost)
         } else {
-            Err(GlobalError::InvalidOption {
+            Err(SphereError::InvalidOption {
                 name: "max_boost",
                 reason: "must be a positive finite number",
             })
@@ -208,7 +208,7 @@ fn prepare(
         }
         MobiusObjective::Uniform => {
             if !(options.max_boost > 0.0 && options.max_boost.is_finite()) {
-                return Err(GlobalError::InvalidOption {
+                return Err(SphereError::InvalidOption {
                     name: "max_boost",
                     reason: "must be a positive finite number",
                 });
@@ -217,7 +217,7 @@ fn prepare(
         }
         MobiusObjective::Emphasize { region } => {
             if !(options.max_area_scale > 1.0 && options.max_area_scale.is_finite()) {
-                return Err(GlobalError::InvalidOption {
+                return Err(SphereError::InvalidOption {
                     name: "max_area_scale",
                     reason: "must be a finite number > 1",
                 });
@@ -302,34 +302,34 @@ fn tangential_gradient_norm(eval: &EvalFn<'_>, x: &[f64], radius: f64) -> f64 {
 /// `points` of `mesh` (Jin et al. 2004, §3.4, "topological sphere"), and the moved map.
 ///
 /// # Errors
-/// [`GlobalError::MapLength`], [`GlobalError::NonFiniteMap`], [`GlobalError::NotOnSphere`]
+/// [`SphereError::MapLength`], [`SphereError::NonFiniteMap`], [`SphereError::NotOnSphere`]
 /// (a point farther than [`MAP_RADIUS_TOL`] from the unit sphere), the region errors of
-/// [`crate::region_mask`], [`GlobalError::InvalidOption`].
+/// [`crate::region_mask`], [`SphereError::InvalidOption`].
 ///
 /// # Examples
 /// ```
-/// use conformap_global::{optimize_sphere_mobius, sphere_map, MobiusObjective, MobiusOptions, SphereOptions};
-/// # let mesh = conformap_global::doc_support::octahedron_sphere(2);
+/// use conformap_sphere::{optimize_sphere_mobius, sphere_map, MobiusObjective, MobiusOptions, SphereOptions};
+/// # let mesh = conformap_sphere::doc_support::octahedron_sphere(2);
 /// let map = sphere_map(&mesh, &SphereOptions::DEFAULT)?;
 /// let best = optimize_sphere_mobius(&mesh, &map.points, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
 /// assert!(best.report.uniformity_after <= best.report.uniformity_before);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
 pub fn optimize_sphere_mobius(
     mesh: &TriMesh,
     points: &[[f64; 3]],
     objective: &MobiusObjective,
     options: &MobiusOptions,
-) -> Result<SphereMobius, GlobalError> {
+) -> Result<SphereMobius, SphereError> {
     let t0 = Instant::now();
     check_len(mesh, points.len())?;
     for (v, p) in points.iter().enumerate() {
         if !p.iter().all(|x| x.is_finite()) {
-            return Err(GlobalError::NonFiniteMap { vertex: v });
+            return Err(SphereError::NonFiniteMap { vertex: v });
         }
         let r = norm(*p);
         if !((r - 1.0).abs() <= MAP_RADIUS_TOL) {
-            return Err(GlobalError::NotOnSphere {
+            return Err(SphereError::NotOnSphere {
                 vertex: v,
                 radius: r,
             });
@@ -349,8 +349,8 @@ pub fn optimize_sphere_mobius(
         run_starts(&eval, 3, prep.radius, options, prep.mask.is_some());
     let moved: Vec<[f64; 3]> = prob.boosted(&u).into_iter().map(normalize).collect();
     let mobius = Mobius::boost([u[0], u[1], u[2]]);
-    let areas_before = sphere_face_areas(mesh, &base);
-    let areas_after = sphere_face_areas(mesh, &moved);
+    let areas_before = chord_areas(mesh, &base);
+    let areas_after = chord_areas(mesh, &moved);
     let report = finish_report(
         objective,
         "sphere",
@@ -376,38 +376,38 @@ pub fn optimize_sphere_mobius(
 /// `mesh` (Jin et al. 2004, §3.4, "topological disk"), and the moved map.
 ///
 /// # Errors
-/// [`GlobalError::MapLength`], [`GlobalError::NonFiniteMap`], [`GlobalError::NotInDisk`]
+/// [`SphereError::MapLength`], [`SphereError::NonFiniteMap`], [`SphereError::NotInDisk`]
 /// (a point farther than [`MAP_RADIUS_TOL`] outside the unit circle), the region errors of
-/// [`crate::region_mask`], [`GlobalError::InvalidOption`].
+/// [`crate::region_mask`], [`SphereError::InvalidOption`].
 ///
 /// # Examples
 /// ```
-/// use conformap_global::{optimize_disk_mobius, MobiusObjective, MobiusOptions};
+/// use conformap_sphere::{optimize_disk_mobius, MobiusObjective, MobiusOptions};
 /// use num_complex::Complex64;
 /// # let mesh = conformap_testkit::flat_disk(8, 8);
 /// // a flat unit disk mesh, mapped by a disk automorphism that crowds it to one side
-/// let moved = conformap_global::DiskAutomorphism::from_vector([1.0, 0.5]);
+/// let moved = conformap_sphere::DiskAutomorphism::from_vector([1.0, 0.5]);
 /// let map: Vec<Complex64> = mesh.positions().iter()
 ///     .map(|p| moved.apply(Complex64::new(p[0], p[1]))).collect();
 /// let best = optimize_disk_mobius(&mesh, &map, &MobiusObjective::Uniform, &MobiusOptions::DEFAULT)?;
 /// // the optimum undoes the crowding
 /// assert!(best.report.uniformity_after < 0.01 * best.report.uniformity_before);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
 pub fn optimize_disk_mobius(
     mesh: &TriMesh,
     map: &[Complex64],
     objective: &MobiusObjective,
     options: &MobiusOptions,
-) -> Result<DiskMobius, GlobalError> {
+) -> Result<DiskMobius, SphereError> {
     let t0 = Instant::now();
     check_len(mesh, map.len())?;
     for (v, z) in map.iter().enumerate() {
         if !(z.re.is_finite() && z.im.is_finite()) {
-            return Err(GlobalError::NonFiniteMap { vertex: v });
+            return Err(SphereError::NonFiniteMap { vertex: v });
         }
         if !(z.norm() <= 1.0 + MAP_RADIUS_TOL) {
-            return Err(GlobalError::NotInDisk {
+            return Err(SphereError::NotInDisk {
                 vertex: v,
                 radius: z.norm(),
             });
@@ -424,8 +424,8 @@ pub fn optimize_disk_mobius(
         run_starts(&eval, 2, prep.radius, options, prep.mask.is_some());
     let (v, moved, flip_limit) = keep_orientation(mesh, map, &prob, v);
     let automorphism = DiskAutomorphism::from_vector([v[0], v[1]]);
-    let areas_before = planar_face_areas(mesh, map);
-    let areas_after = planar_face_areas(mesh, &moved);
+    let areas_before = planar_areas(mesh, map);
+    let areas_after = planar_areas(mesh, &moved);
     // a boost shortened to keep the orientation is no longer the optimum: its own residual
     let gradient_norm = match flip_limit {
         Some(_) => tangential_gradient_norm(&eval, &v, prep.radius),

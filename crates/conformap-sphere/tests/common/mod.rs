@@ -1,11 +1,11 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use conformap_global::{
+use conformap_mesh::TriMesh;
+use conformap_sphere::{
     optimize_disk_mobius, optimize_sphere_mobius, DiskMobius, MobiusObjective, MobiusOptions,
     MobiusReport, SphereMobius,
 };
-use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 /// A deterministic pseudo-random stream in [0, 1) (64-bit LCG, Knuth's constants), so the

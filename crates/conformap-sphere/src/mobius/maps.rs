@@ -5,8 +5,9 @@
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 
-use crate::stereo::{from_homogeneous, norm, to_homogeneous, Homogeneous};
-use crate::GlobalError;
+use crate::stereo::{from_homogeneous, to_homogeneous, Homogeneous};
+use crate::SphereError;
+use conformap_operators::vec3::{dot, norm};
 
 /// Relative size of `|ad − bc|` (against the largest `|entry|²`) below which a matrix is
 /// rejected as singular: `1e-14`, a little above f64 round-off of the products (~1e-16
@@ -22,7 +23,7 @@ const ONE: Complex64 = Complex64::new(1.0, 0.0);
 ///
 /// # Examples
 /// ```
-/// use conformap_global::Mobius;
+/// use conformap_sphere::Mobius;
 /// use num_complex::Complex64;
 /// let c = |re, im| Complex64::new(re, im);
 /// let m = Mobius::try_new(c(1.0, 1.0), c(0.5, 0.0), c(0.2, -0.3), c(2.0, 0.0))?;
@@ -32,7 +33,7 @@ const ONE: Complex64 = Complex64::new(1.0, 0.0);
 /// // and it moves sphere points along the sphere
 /// let p = m.apply_sphere([0.6, 0.0, 0.8]);
 /// assert!(((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < 1e-15);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mobius {
@@ -59,14 +60,14 @@ impl Mobius {
     /// immaterial: `±` give the same map).
     ///
     /// # Errors
-    /// [`GlobalError::SingularMobius`] if a coefficient is not finite or
+    /// [`SphereError::SingularMobius`] if a coefficient is not finite or
     /// `|ad − bc| ≤` [`MOBIUS_SINGULAR_REL`] `· max |entry|²`.
     pub fn try_new(
         a: Complex64,
         b: Complex64,
         c: Complex64,
         d: Complex64,
-    ) -> Result<Self, GlobalError> {
+    ) -> Result<Self, SphereError> {
         let det = a * d - b * c;
         let scale = [a, b, c, d]
             .iter()
@@ -76,7 +77,7 @@ impl Mobius {
             .iter()
             .all(|z| z.re.is_finite() && z.im.is_finite());
         if !finite || !(det.norm() > MOBIUS_SINGULAR_REL * scale) {
-            return Err(GlobalError::SingularMobius { det: det.norm() });
+            return Err(SphereError::SingularMobius { det: det.norm() });
         }
         let s = det.sqrt();
         Ok(Self {
@@ -202,9 +203,9 @@ pub struct MobiusCoefficients {
 pub fn boost_sphere_point(u: [f64; 3], x: [f64; 3]) -> [f64; 3] {
     let g = half_tanh_ratio(norm(u));
     let al = [g * u[0], g * u[1], g * u[2]];
-    let r = 1.0 - (al[0] * al[0] + al[1] * al[1] + al[2] * al[2]);
+    let r = 1.0 - dot(al, al);
     let d = [x[0] - al[0], x[1] - al[1], x[2] - al[2]];
-    let q = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let q = dot(d, d);
     [
         r * d[0] / q - al[0],
         r * d[1] / q - al[1],
@@ -243,7 +244,7 @@ pub(crate) fn half_tanh_ratio_dt_over_t(t: f64) -> f64 {
 ///
 /// # Examples
 /// ```
-/// use conformap_global::DiskAutomorphism;
+/// use conformap_sphere::DiskAutomorphism;
 /// use num_complex::Complex64;
 /// let m = DiskAutomorphism::from_vector([0.8, -0.3]).compose(&DiskAutomorphism::rotation(0.4));
 /// for k in 0..8 {
@@ -267,15 +268,15 @@ impl DiskAutomorphism {
     /// `(az + b)/(b̄z + ā)` rescaled to `|a|² − |b|² = 1`.
     ///
     /// # Errors
-    /// [`GlobalError::SingularMobius`] unless `|a|² − |b|² > 0` (relative to
+    /// [`SphereError::SingularMobius`] unless `|a|² − |b|² > 0` (relative to
     /// [`MOBIUS_SINGULAR_REL`]) and both are finite: with `|b| ≥ |a|` the map does not keep
     /// the disk.
-    pub fn try_new(a: Complex64, b: Complex64) -> Result<Self, GlobalError> {
+    pub fn try_new(a: Complex64, b: Complex64) -> Result<Self, SphereError> {
         let det = a.norm_sqr() - b.norm_sqr();
         let scale = a.norm_sqr().max(b.norm_sqr());
         let finite = [a, b].iter().all(|z| z.re.is_finite() && z.im.is_finite());
         if !finite || !(det > MOBIUS_SINGULAR_REL * scale) {
-            return Err(GlobalError::SingularMobius { det });
+            return Err(SphereError::SingularMobius { det });
         }
         let s = det.sqrt();
         Ok(Self { a: a / s, b: b / s })
@@ -341,7 +342,8 @@ impl DiskAutomorphism {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stereo::{dot, inverse_stereographic, normalize, stereographic, sub};
+    use crate::stereo::{inverse_stereographic, stereographic};
+    use conformap_operators::vec3::{dot, normalize, sub};
 
     fn c(re: f64, im: f64) -> Complex64 {
         Complex64::new(re, im)
@@ -411,7 +413,7 @@ mod tests {
             assert!(norm(sub(m.apply_sphere(n), n)) < 1e-12);
             // stretch e^t at n: a nearby point moves away from n by that factor
             let eps = 1e-6;
-            let tangent = normalize(crate::stereo::cross(n, [0.3, 0.5, 0.7]));
+            let tangent = normalize(conformap_operators::vec3::cross(n, [0.3, 0.5, 0.7]));
             let x = normalize([
                 n[0] + eps * tangent[0],
                 n[1] + eps * tangent[1],

@@ -18,10 +18,10 @@ use crate::sphere::report::{SphereReport, StageRecord, Timings};
 use crate::sphere::source::{farthest_vertex, sphere_source_face};
 use crate::sphere::untangle::{inverted_faces, untangle};
 use crate::stereo::{
-    det3, inverse_stereographic, inverse_stereographic_south, normalize, stereographic,
-    stereographic_south,
+    det3, inverse_stereographic, inverse_stereographic_south, stereographic, stereographic_south,
 };
-use crate::GlobalError;
+use crate::SphereError;
+use conformap_operators::vec3::normalize;
 
 /// Default share of the vertices kept from the previous stage in a correction solve: 0.1.
 /// The kept cap lies opposite the badly resolved region, so its values are accurate and the
@@ -141,14 +141,14 @@ pub struct SphereMap {
 /// Factorizations: one of `L` reduced by the pinned vertex, one per correction.
 ///
 /// # Errors
-/// [`GlobalError::WrongTopology`] unless the mesh is closed, connected and genus 0;
-/// [`GlobalError::InvalidOption`]; [`GlobalError::Operator`] if a factorization fails;
-/// [`GlobalError::NonFinite`] if a solve overflows.
+/// [`SphereError::WrongTopology`] unless the mesh is closed, connected and genus 0;
+/// [`SphereError::InvalidOption`]; [`SphereError::Operator`] if a factorization fails;
+/// [`SphereError::NonFinite`] if a solve overflows.
 ///
 /// # Examples
 /// ```
-/// use conformap_global::{sphere_map, sphere_metrics, SphereOptions};
-/// # let mesh = conformap_global::doc_support::octahedron_sphere(4);
+/// use conformap_sphere::{sphere_map, sphere_metrics, SphereOptions};
+/// # let mesh = conformap_sphere::doc_support::octahedron_sphere(4);
 /// // `mesh`: a closed genus-0 mesh (here an ellipsoid, a subdivided octahedron of 1026
 /// // vertices squashed to half height)
 /// let map = sphere_map(&mesh, &SphereOptions::DEFAULT)?;
@@ -156,13 +156,13 @@ pub struct SphereMap {
 /// assert!(m.radius_residual_max < 1e-12);
 /// assert_eq!(m.flipped_faces, 0);
 /// assert!(m.angle_distortion_deg.mean < 1.0);
-/// # Ok::<(), conformap_global::GlobalError>(())
+/// # Ok::<(), conformap_sphere::SphereError>(())
 /// ```
-pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, GlobalError> {
+pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, SphereError> {
     let t_all = Instant::now();
     let found = mesh.topology();
     if found != Topology::Sphere {
-        return Err(GlobalError::WrongTopology {
+        return Err(SphereError::WrongTopology {
             operation: "a sphere map",
             expected: "a closed, connected genus-0 mesh",
             found,
@@ -241,7 +241,7 @@ fn solve_with(
     options: &SphereOptions,
     assemble_ms: f64,
     t_all: Instant,
-) -> Result<SphereMap, GlobalError> {
+) -> Result<SphereMap, SphereError> {
     let n = mesh.num_vertices();
     let mut timings = Timings {
         assemble: assemble_ms,
@@ -344,22 +344,22 @@ fn solve_with(
     })
 }
 
-fn check_options(mesh: &TriMesh, o: &SphereOptions) -> Result<(), GlobalError> {
+fn check_options(mesh: &TriMesh, o: &SphereOptions) -> Result<(), SphereError> {
     if !(o.fixed_fraction > 0.0 && o.fixed_fraction < 1.0) {
-        return Err(GlobalError::InvalidOption {
+        return Err(SphereError::InvalidOption {
             name: "fixed_fraction",
             reason: "must lie strictly between 0 and 1",
         });
     }
     if !o.min_gain.is_finite() {
-        return Err(GlobalError::InvalidOption {
+        return Err(SphereError::InvalidOption {
             name: "min_gain",
             reason: "must be finite",
         });
     }
     if let Some(f) = o.source_face {
         if f >= mesh.num_faces() {
-            return Err(GlobalError::InvalidOption {
+            return Err(SphereError::InvalidOption {
                 name: "source_face",
                 reason: "must be a face index of the mesh",
             });
@@ -372,12 +372,12 @@ fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
 
-fn check_finite(f: &[Complex64], stage: &'static str) -> Result<(), GlobalError> {
+fn check_finite(f: &[Complex64], stage: &'static str) -> Result<(), SphereError> {
     match f
         .iter()
         .position(|z| !(z.re.is_finite() && z.im.is_finite()))
     {
-        Some(vertex) => Err(GlobalError::NonFinite { vertex, stage }),
+        Some(vertex) => Err(SphereError::NonFinite { vertex, stage }),
         None => Ok(()),
     }
 }
@@ -459,7 +459,7 @@ fn correct(
     rank: &[u32],
     fraction: f64,
     from_south: bool,
-) -> Result<(Vec<[f64; 3]>, usize, f64), GlobalError> {
+) -> Result<(Vec<[f64; 3]>, usize, f64), SphereError> {
     let n = points.len();
     let keep = ((fraction * n as f64).ceil() as usize).clamp(1, n - 1);
     let mut order: Vec<u32> = (0..n as u32).collect();

@@ -1,11 +1,11 @@
 //! The large shared meshes (`../shared/meshes/`): run with
-//! `cargo test --release -p conformap-global --test large_meshes -- --ignored`.
+//! `cargo test --release -p conformap-sphere --test large_meshes -- --ignored`.
 //! Each test skips (saying so) a mesh that is absent.
 
 mod common;
 
 use common::{assert_more_uniform, uniform_disk, uniform_sphere};
-use conformap_global::{sphere_map, sphere_metrics, SphereOptions};
+use conformap_sphere::{sphere_map, sphere_metrics, SphereOptions};
 
 /// Mean chord-angle distortion bounds (degrees): the 2° for david_head and brain
 /// (measured 0.877° and 1.226°); armadillo measured 1.926°, spot 2.953°.

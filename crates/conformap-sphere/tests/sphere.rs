@@ -3,7 +3,7 @@
 mod common;
 
 use common::{norm, uniform_sphere};
-use conformap_global::{sphere_map, sphere_metrics, GlobalError, SphereOptions};
+use conformap_sphere::{sphere_map, sphere_metrics, SphereError, SphereOptions};
 
 /// Mean chord-angle distortion of spot's sphere map, measured 2.953° (default options; see
 /// the README table), with headroom for platform rounding.
@@ -71,12 +71,12 @@ fn wrong_topologies_and_options_are_errors() {
     let disk = conformap_testkit::flat_disk(3, 6);
     assert!(matches!(
         sphere_map(&disk, &SphereOptions::DEFAULT),
-        Err(GlobalError::WrongTopology { .. })
+        Err(SphereError::WrongTopology { .. })
     ));
     let torus = conformap_testkit::torus(2.0, 0.5, 12, 8);
     assert!(matches!(
         sphere_map(&torus, &SphereOptions::DEFAULT),
-        Err(GlobalError::WrongTopology { .. })
+        Err(SphereError::WrongTopology { .. })
     ));
     let s = conformap_testkit::icosphere(1.0, 1);
     for bad in [
@@ -86,14 +86,14 @@ fn wrong_topologies_and_options_are_errors() {
     ] {
         assert!(matches!(
             sphere_map(&s, &bad),
-            Err(GlobalError::InvalidOption { .. })
+            Err(SphereError::InvalidOption { .. })
         ));
     }
 }
 
 #[test]
 fn zero_corrections_return_angenents_map() {
-    let mesh = conformap_global::doc_support::octahedron_sphere(3);
+    let mesh = conformap_sphere::doc_support::octahedron_sphere(3);
     let map = sphere_map(&mesh, &SphereOptions::DEFAULT.with_max_corrections(0)).unwrap();
     assert_eq!(map.report.stages.len(), 1);
     assert_eq!(map.report.factorizations, 1);
