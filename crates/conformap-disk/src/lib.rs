@@ -62,14 +62,11 @@ pub use cem::{cem, interior_residual, CemOptions};
 pub use error::DiskError;
 pub use harmonic::harmonic_arc_length;
 pub use koebe::{
-    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
-    LoopCircleFit, PolishReport,
+    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings, PolishReport,
 };
-pub use laplacian_choice::{
-    FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
-};
+pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions};
 pub use memory::{koebe_peak_bytes, CEM_EXTRA_BYTES_PER_VERTEX};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
-pub use problem::{polygon_area, polygon_area_of, DiskProblem};
+pub use problem::{polygon_area_of, DiskProblem};
 pub use report::{DiskMap, SolverReport, Timings};
 pub use unfold::{unfold_disk_map, Unfolded};

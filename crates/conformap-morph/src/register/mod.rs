@@ -20,7 +20,8 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::MorphError;
-use boundary::{polygon_area, BoundaryEnergy};
+use boundary::BoundaryEnergy;
+use conformap_operators::planar::polygon_area;
 use system::LandmarkSystem;
 pub(crate) use warp::warp_landmarks;
 pub use warp::{WarpOptions, WarpReport, WARP_MAX_STEPS, WARP_STEP, WARP_SUPPORT};

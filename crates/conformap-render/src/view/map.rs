@@ -6,7 +6,7 @@ use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
 use super::{clamp_barycentric, colorbar, interpolate, FaceTex, TexMap};
-use crate::camera::{dot, normalize, Camera};
+use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::faces::{distortions, face_field};
 use crate::image::Image;
@@ -15,6 +15,7 @@ use crate::param::{Domain, MapCoords};
 use crate::raster::{self, centroid, Barycentric};
 use crate::textures::texture;
 use crate::view::surface::{AMBIENT, DIFFUSE};
+use conformap_operators::vec3::{dot, normalize};
 
 /// Width of a mesh edge in output pixels: 1.
 pub const EDGE_WIDTH_PX: f64 = 1.0;
