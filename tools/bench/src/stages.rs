@@ -187,7 +187,12 @@ pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, S
     let _ = std::fs::remove_file(&dest);
     let total = ms(t_all);
     let peak = peak_rss_mib();
-    let stages = out.report.stages_ms.clone().unwrap_or_default();
+    let stages = out
+        .report
+        .ccem
+        .as_ref()
+        .map(|c| c.stages_ms.clone())
+        .unwrap_or_default();
     // the yardstick: one more factorization of the same matrix with the facade's defaults
     // (AMD), and one with nested dissection when the pipeline used it; the fastest of
     // these and the pipeline's own is "one factorization"
