@@ -115,12 +115,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     ((b - a).conj() * (c - a)).im <= 0.0
                 })
                 .count();
-            let ls = r.line_search.clone().unwrap_or_default();
+            let c = r.ccem.clone().unwrap_or_default();
+            let ls = c.line_search.clone();
             if table {
-                let (mode, form, prods) = r.schur.as_ref().map_or(("-".to_string(), 0.0, 0), |s| {
-                    (s.mode.clone(), s.form_ms, s.products)
+                let (mode, form, prods) = r.ccem.as_ref().map_or(("-".to_string(), 0.0, 0), |c| {
+                    (c.schur.mode.clone(), c.schur.form_ms, c.schur.products)
                 });
-                let st = r.stages_ms.clone().unwrap_or_default();
+                let st = c.stages_ms.clone();
                 println!(
                     "TABLE {short} {label} start_ms {:.0} iter_ms {:.0} finish_ms {:.0} E_mesh {e_mesh:.6e} E_prob {e_full:.6e} it {} conv {} flips {flips} total_ms {:.0} factor_ms {:.0} method_ms {ms:.0} schur {mode} form_ms {form:.0} prods {prods} evals {} held {}",
                     st.start,
@@ -131,14 +132,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     prep + ms,
                     p.factor_ms,
                     ls.evaluations,
-                    r.boundary.as_ref().map_or(0, |b| b.gaps_at_floor)
+                    c.boundary.gaps_at_floor
                 );
                 continue;
             }
-            let (schur, form, prods) = r.schur.as_ref().map_or(("-".to_string(), 0.0, 0), |s| {
-                (s.mode.clone(), s.form_ms, s.products)
+            let (schur, form, prods) = r.ccem.as_ref().map_or(("-".to_string(), 0.0, 0), |c| {
+                (c.schur.mode.clone(), c.schur.form_ms, c.schur.products)
             });
-            let b = r.boundary.clone().unwrap_or_default();
+            let b = c.boundary.clone();
             println!(
                 "  {label:5} E_C(mesh) {e_mesh:.6e} E_C {e_full:.6e} (θ-form rel diff {:.1e}) it {:4} conv {} flips {flips} \
                  t {ms:.0} ms (solve {:.0}) | ls evals {} wolfe {} guard {} proj {} dec {} fb {} | schur {schur} form {form:.0} ms prods {prods} | gap {:.1e} held {} repaired {}",
@@ -156,8 +157,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 b.gaps_at_floor,
                 b.start_repaired_gaps,
             );
-            if !r.gradient_norm_history.is_empty() {
-                let g = &r.gradient_norm_history;
+            if !c.gradient_norm_history.is_empty() {
+                let g = &c.gradient_norm_history;
                 println!(
                     "      |grad| first {:.3e} last {:.3e} min {:.3e}",
                     g[0],
@@ -170,7 +171,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if k % steps == 0 || k + 1 == ls.steps.len() {
                         println!(
                             "      step {k:4} E {:.9e} α {:.3e} αmax {:.3e} slope {:.2e}->{:.2e} evals {} {} |g| {:.2e}",
-                            s.energy_after, s.alpha, s.alpha_max, s.slope_before, s.slope_after, s.evaluations, s.kind, r.gradient_norm_history[k + 1]
+                            s.energy_after, s.alpha, s.alpha_max, s.slope_before, s.slope_after, s.evaluations, s.kind, c.gradient_norm_history[k + 1]
                         );
                     }
                 }

@@ -4,8 +4,9 @@ use conformap_mesh::TriMesh;
 use conformap_operators::{face_areas, solve_dense_spd, Cholesky, LaplacianBlocks, Partition};
 use num_complex::Complex64;
 
-use crate::problem::{polygon_area, DiskProblem};
+use crate::problem::DiskProblem;
 use crate::DiskError;
+use conformap_operators::planar::polygon_area;
 
 /// Outcome of the Angenent initial map.
 #[derive(Debug, Clone)]
@@ -61,16 +62,11 @@ pub fn angenent_rhs(mesh: &TriMesh, face: usize) -> [(u32, Complex64); 3] {
     let t = mesh.faces()[face];
     let p = |v: u32| mesh.positions()[v as usize];
     let (pa, pb, pc) = (p(t[0]), p(t[1]), p(t[2]));
-    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    use conformap_operators::vec3::{axpy, dot, sub};
     let ab = sub(pb, pa);
     let ab_len2 = dot(ab, ab);
     let alpha = dot(sub(pc, pa), ab) / ab_len2;
-    let foot = [
-        pa[0] + alpha * ab[0],
-        pa[1] + alpha * ab[1],
-        pa[2] + alpha * ab[2],
-    ];
+    let foot = axpy(alpha, ab, pa);
     let h = dot(sub(pc, foot), sub(pc, foot)).sqrt();
     let len = ab_len2.sqrt();
     [

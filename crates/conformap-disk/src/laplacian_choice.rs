@@ -28,7 +28,8 @@ use std::time::Instant;
 use conformap_mesh::TriMesh;
 use conformap_operators::{
     cotan_laplacian, intrinsic_delaunay_laplacian_with, mean_value_matrix, Cholesky,
-    IntrinsicOptions, IntrinsicStats, LaplacianBlocks, LuSolver, OperatorError, Partition,
+    IntrinsicOptions, IntrinsicStats, LaplacianBlocks, LuSolver, OperatorError, Ordering,
+    Partition,
 };
 use num_complex::Complex64;
 use sprs::CsMat;
@@ -63,78 +64,18 @@ impl LaplacianKind {
     }
 }
 
-/// The fill-reducing ordering of the factorization of `L_II`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum FactorOrdering {
-    /// The factorization facade's own policy ([`conformap_operators::Ordering::Auto`]:
-    /// nested dissection from
-    /// [`conformap_operators::Ordering::NESTED_DISSECTION_MIN_DIM`] interior vertices, AMD
-    /// below; default).
-    #[default]
-    Auto,
-    /// Approximate minimum degree ([`conformap_operators::Ordering::Amd`]).
-    Amd,
-    /// Nested dissection ([`conformap_operators::Ordering::NestedDissection`]).
-    NestedDissection,
-}
-
-impl FactorOrdering {
-    /// The ordering used for `interior` interior vertices.
-    ///
-    /// ```
-    /// use conformap_disk::FactorOrdering;
-    /// use conformap_operators::Ordering;
-    ///
-    /// let auto = FactorOrdering::Auto;
-    /// assert_eq!(auto.resolve(130_000), Ordering::Amd);
-    /// assert_eq!(auto.resolve(Ordering::NESTED_DISSECTION_MIN_DIM), Ordering::NestedDissection);
-    /// assert_eq!(FactorOrdering::Amd.resolve(1 << 20), Ordering::Amd);
-    /// assert_eq!("nd".parse::<FactorOrdering>(), Ok(FactorOrdering::NestedDissection));
-    /// assert!("metis".parse::<FactorOrdering>().is_err());
-    /// ```
-    pub fn resolve(self, interior: usize) -> conformap_operators::Ordering {
-        use conformap_operators::Ordering;
-        match self {
-            Self::Amd => Ordering::Amd,
-            Self::NestedDissection => Ordering::NestedDissection,
-            _ => Ordering::Auto.resolve(interior),
-        }
-    }
-
-    /// The name used on the command line: `auto`, `amd` or `nd` (parsed back by
-    /// `FromStr`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Amd => "amd",
-            Self::NestedDissection => "nd",
-            _ => "auto",
-        }
-    }
-}
-
-impl std::str::FromStr for FactorOrdering {
-    type Err = String;
-
-    /// Parses [`FactorOrdering::name`].
-    fn from_str(s: &str) -> Result<Self, String> {
-        [Self::Auto, Self::Amd, Self::NestedDissection]
-            .into_iter()
-            .find(|o| o.name() == s)
-            .ok_or_else(|| format!("unknown ordering {s:?} (auto, amd, nd)"))
-    }
-}
-
 /// Options of [`crate::DiskProblem::with_options`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 #[non_exhaustive]
 pub struct ProblemOptions {
     /// The Laplacian. Default: [`LaplacianKind::Auto`].
     pub laplacian: LaplacianKind,
     /// Options of the intrinsic Delaunay flips. Default: [`IntrinsicOptions::DEFAULT`].
     pub intrinsic: IntrinsicOptions,
-    /// The ordering of the factorization of `L_II`. Default: [`FactorOrdering::Auto`].
-    pub ordering: FactorOrdering,
+    /// The fill-reducing ordering of the factorization of `L_II` (resolved for the
+    /// number of interior vertices, see [`Ordering::resolve`]; the map is the same to
+    /// rounding, only its cost changes). Default: [`Ordering::Auto`].
+    pub ordering: Ordering,
 }
 
 impl ProblemOptions {
@@ -142,12 +83,20 @@ impl ProblemOptions {
     pub const DEFAULT: Self = Self {
         laplacian: LaplacianKind::Auto,
         intrinsic: IntrinsicOptions::DEFAULT,
-        ordering: FactorOrdering::Auto,
+        ordering: Ordering::Auto,
     };
 
     /// Sets [`Self::ordering`].
     #[must_use]
-    pub fn with_ordering(mut self, ordering: FactorOrdering) -> Self {
+    ///
+    /// ```
+    /// use conformap_disk::ProblemOptions;
+    /// use conformap_operators::Ordering;
+    /// let o = ProblemOptions::DEFAULT.with_ordering("nd".parse()?);
+    /// assert_eq!(o.ordering, Ordering::NestedDissection);
+    /// # Ok::<(), conformap_operators::OperatorError>(())
+    /// ```
+    pub fn with_ordering(mut self, ordering: Ordering) -> Self {
         self.ordering = ordering;
         self
     }

@@ -58,10 +58,7 @@ mod unfold;
 #[doc(hidden)]
 pub mod doc_support;
 
-pub use ccem::{
-    ccem, BoundaryReport, CcemOptions, CcemStages, CcemStart, CcemVariant, LineSearchReport,
-    SchurMode, SchurReport, StepRecord,
-};
+pub use ccem::{ccem, CcemOptions, CcemStart, CcemVariant, SchurMode};
 pub use cem::{cem, interior_residual, CemOptions};
 pub use error::DiskError;
 pub use flatten::{
@@ -71,14 +68,14 @@ pub use flatten::{
 };
 pub use harmonic::harmonic_arc_length;
 pub use koebe::{
-    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings,
-    LoopCircleFit, PolishReport,
+    koebe, CircleDomainMap, KoebeOptions, KoebeReport, KoebeStepRecord, KoebeTimings, PolishReport,
 };
-pub use laplacian_choice::{
-    FactorOrdering, GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions,
-};
+pub use laplacian_choice::{GuardedExtension, InteriorOperator, LaplacianKind, ProblemOptions};
 pub use memory::{koebe_peak_bytes, CEM_EXTRA_BYTES_PER_VERTEX};
 pub use method::{compute_disk_map, run_disk_method, DiskMethod, DiskOptions};
-pub use problem::{polygon_area, polygon_area_of, DiskProblem};
-pub use report::{DiskMap, SolverReport, Timings};
+pub use problem::{polygon_area_of, DiskProblem};
+pub use report::{
+    BoundaryReport, CcemReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport,
+    StepRecord, Timings,
+};
 pub use unfold::{unfold_disk_map, Unfolded};

@@ -350,14 +350,3 @@ pub fn polygon_area_of(lp: &[u32], f: &[Complex64]) -> f64 {
     }
     0.5 * a
 }
-
-/// Signed area of the polygon through the points `z` in order.
-pub fn polygon_area(z: &[Complex64]) -> f64 {
-    let m = z.len();
-    let mut a = 0.0;
-    for k in 0..m {
-        let (p, q) = (z[k], z[(k + 1) % m]);
-        a += p.re * q.im - q.re * p.im;
-    }
-    0.5 * a
-}

@@ -2,16 +2,8 @@
 //! several `vt`), as `global` writes them and as other tools' atlases come.
 
 use std::collections::HashMap;
-use std::path::Path;
 
-use conformap_mesh::TriMesh;
-
-use crate::api::write_target;
-use crate::atomic::{write_atomically, write_encoded_atomically};
-use crate::error::{IoError, WriteProblem};
-use crate::gltffile::encode_gltf;
-use crate::loaded::Format;
-use crate::objfile::encode_obj_with_corner_uv;
+use crate::error::WriteProblem;
 
 /// Texture coordinates per face corner: corner `k` of face `f` has
 /// `texcoords[faces[f][k]]`. A vertex may have different coordinates in different faces
@@ -87,70 +79,5 @@ impl CornerUv {
             })
             .collect();
         (pairs, faces)
-    }
-}
-
-/// Writes `mesh` with a seamed map: OBJ keeps the `v` lines in the mesh's order and count
-/// and writes `f v/vt` with one `vt` per entry of `uv.texcoords` (exact round trip);
-/// glTF/GLB split the vertices along the seams (one vertex per distinct position and
-/// texture coordinate, `TEXCOORD_0`), as glTF requires.
-///
-/// The file appears complete or not at all.
-///
-/// # Errors
-/// [`IoError::BadWriteInput`] if `uv` is not a map of `mesh` ([`CornerUv::check`]) or a
-/// value is not finite; [`IoError::Write`] if the file cannot be written;
-/// [`IoError::UnknownFormat`] for another extension.
-///
-/// # Examples
-/// ```
-/// use conformap_io::{read_mesh, write_mesh_with_corner_uv, CornerUv};
-/// # let dir = std::env::temp_dir().join(format!("conformap-io-corner-{}", std::process::id()));
-/// # std::fs::create_dir_all(&dir).unwrap();
-/// let mesh = conformap_mesh::TriMesh::try_new(
-///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
-///     vec![[0, 1, 2], [0, 2, 3]],
-/// ).unwrap();
-/// // the second face's copy of vertex 0 sits elsewhere: a seam along edge 0–2
-/// let uv = CornerUv {
-///     texcoords: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]],
-///     faces: vec![[0, 1, 2], [4, 2, 3]],
-/// };
-/// let out = dir.join("seamed.obj");
-/// write_mesh_with_corner_uv(&out, &mesh, &uv)?;
-/// let back = read_mesh(&out)?;
-/// assert_eq!(back.corner_uv.as_ref(), Some(&uv));
-/// assert!(back.uv.is_none()); // not one texture coordinate per vertex
-/// # std::fs::remove_dir_all(&dir).unwrap();
-/// # Ok::<(), conformap_io::IoError>(())
-/// ```
-pub fn write_mesh_with_corner_uv(
-    path: impl AsRef<Path>,
-    mesh: &TriMesh,
-    uv: &CornerUv,
-) -> Result<(), IoError> {
-    let path = path.as_ref();
-    let (format, bad) = write_target(path)?;
-    uv.check(mesh.num_faces()).map_err(bad)?;
-    match format {
-        Format::Obj => {
-            let encoded =
-                encode_obj_with_corner_uv(mesh.positions(), &uv.texcoords, mesh.faces(), &uv.faces);
-            write_encoded_atomically(path, &encoded)
-        }
-        Format::Gltf | Format::Glb => {
-            let (pairs, faces) = uv.split(mesh.faces());
-            let positions: Vec<[f64; 3]> = pairs
-                .iter()
-                .map(|&(v, _)| mesh.positions()[v as usize])
-                .collect();
-            let texcoords: Vec<[f64; 2]> = pairs
-                .iter()
-                .map(|&(_, t)| uv.texcoords[t as usize])
-                .collect();
-            let bytes = encode_gltf(format == Format::Glb, &positions, Some(&texcoords), &faces)
-                .map_err(bad)?;
-            write_atomically(path, &bytes)
-        }
     }
 }

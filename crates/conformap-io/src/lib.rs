@@ -59,9 +59,11 @@ mod loaded;
 mod objfile;
 mod raw;
 
-pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
+pub use api::{
+    read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_corner_uv, write_mesh_with_uv,
+};
 pub use coincident::{coincident_vertices, weld_coincident, Welded};
-pub use corner_uv::{write_mesh_with_corner_uv, CornerUv};
+pub use corner_uv::CornerUv;
 pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
 pub use frames::ObjFrames;
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};

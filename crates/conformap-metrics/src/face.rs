@@ -1,6 +1,7 @@
 //! Per-face quantities: the isometric chart of a 3D triangle, image corner angles and the
 //! Beltrami coefficient of the affine map on one face.
 
+use conformap_operators::vec3;
 use num_complex::Complex64;
 
 /// `|μ|` reported for a face whose map is exactly anti-conformal (`f_z = 0`, so `|μ| = ∞`):
@@ -20,16 +21,10 @@ impl Chart {
     /// The chart of a non-degenerate triangle (as every face of a validated mesh is).
     #[inline]
     pub(crate) fn new(p: [[f64; 3]; 3]) -> Self {
-        let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-        let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-        let len1 = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
-        let dot = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
-        let c = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        let cross = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let (e1, e2) = (vec3::sub(p[1], p[0]), vec3::sub(p[2], p[0]));
+        let len1 = vec3::norm(e1);
+        let dot = vec3::dot(e1, e2);
+        let cross = vec3::norm(vec3::cross(e1, e2));
         Self {
             w1: len1,
             w2: Complex64::new(dot / len1, cross / len1),

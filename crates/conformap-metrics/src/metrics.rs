@@ -1,7 +1,7 @@
 //! [`planar_map_metrics`]: every metric of a planar map in two linear passes over the faces.
 
 use conformap_mesh::{triangle_area, TriMesh};
-use conformap_operators::{face_points, triangle_angles, triangle_cotangents};
+use conformap_operators::{face_points, triangle_angles, triangle_cotangents, Circle};
 use num_complex::Complex64;
 use rayon::prelude::*;
 
@@ -349,21 +349,13 @@ fn boundary_circles(
         .enumerate()
         .map(|(loop_index, lp)| {
             let outer = outer_loop == Some(loop_index);
-            let (center, radius, residual_max) = if outer && outer_circle == OuterCircle::Unit {
-                ([0.0, 0.0], 1.0, unit_circle_residual(lp, map))
+            let (circle, residual_max) = if outer && outer_circle == OuterCircle::Unit {
+                (Circle::UNIT, unit_circle_residual(lp, map))
             } else {
                 let fit = fit_circle(lp, map);
-                let residual = relative_residual(lp, map, fit);
-                ([fit.center.re, fit.center.im], fit.radius, residual)
+                (fit, relative_residual(lp, map, fit))
             };
-            LoopCircle {
-                loop_index,
-                vertices: lp.len(),
-                outer,
-                center,
-                radius,
-                residual_max,
-            }
+            LoopCircle::new(loop_index, lp.len(), outer, circle, residual_max)
         })
         .collect()
 }

@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use conformap_operators::LoopCircle;
+
 use crate::summary::{AngleStats, LogRatioStats, SummaryStats};
 
 /// A histogram: `counts[k]` values fell in `[edges_deg[k], edges_deg[k + 1])` (the last bin
@@ -14,26 +16,6 @@ pub struct Histogram {
     pub edges_deg: Vec<f64>,
     /// Number of values per bin.
     pub counts: Vec<u64>,
-}
-
-/// How well one boundary loop's image lies on a circle.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct LoopCircle {
-    /// Index into `mesh.boundary_loops()`.
-    pub loop_index: usize,
-    /// Number of vertices on the loop.
-    pub vertices: usize,
-    /// Whether this is the outer loop.
-    pub outer: bool,
-    /// Centre `(u, v)` of the circle, in the coordinates of the map as given (before any
-    /// orientation fix): `(0, 0)` for an outer loop judged against the unit circle.
-    pub center: [f64; 2],
-    /// Radius of the circle (1 for an outer loop judged against the unit circle).
-    pub radius: f64,
-    /// `max ||f − c| − r| / r` over the loop's vertices (relative; for the unit circle the
-    /// same as absolute). 1 for a loop collapsed to a point.
-    pub residual_max: f64,
 }
 
 /// Quality metrics of a planar map; the first ten fields are the `"metrics"` object of the

@@ -98,6 +98,48 @@ impl Ordering {
             Self::Custom(_) => "custom",
         }
     }
+
+    /// The names a user gives on a command line (parsed by `FromStr`, written by
+    /// `Display`): `auto` ([`Ordering::Auto`]), `amd` ([`Ordering::Amd`]) and `nd`
+    /// ([`Ordering::NestedDissection`]).
+    pub const NAMES: [&'static str; 3] = ["auto", "amd", "nd"];
+}
+
+/// The command-line spelling: `auto`, `amd`, `nd` (see [`Ordering::NAMES`]); the orderings
+/// a user cannot name show as `identity` and `custom`.
+///
+/// ```
+/// use conformap_operators::Ordering;
+/// for name in Ordering::NAMES {
+///     assert_eq!(name.parse::<Ordering>()?.to_string(), name);
+/// }
+/// assert_eq!("nd".parse::<Ordering>()?, Ordering::NestedDissection);
+/// assert!("metis".parse::<Ordering>().is_err());
+/// # Ok::<(), conformap_operators::OperatorError>(())
+/// ```
+impl std::fmt::Display for Ordering {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::NestedDissection => "nd",
+            other => other.name(),
+        })
+    }
+}
+
+impl std::str::FromStr for Ordering {
+    type Err = OperatorError;
+
+    /// Parses one of [`Ordering::NAMES`].
+    fn from_str(s: &str) -> Result<Self, OperatorError> {
+        match s {
+            "auto" => Ok(Self::Auto),
+            "amd" => Ok(Self::Amd),
+            "nd" => Ok(Self::NestedDissection),
+            _ => Err(OperatorError::UnknownOrdering {
+                name: s.to_string(),
+            }),
+        }
+    }
 }
 
 /// Options of [`Cholesky::factor_with`].

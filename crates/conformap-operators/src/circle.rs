@@ -3,6 +3,7 @@
 //! judge a map's boundary loops with it, so both use this one copy.
 
 use num_complex::Complex64;
+use serde::{Deserialize, Serialize};
 
 /// Gauss–Newton refinement steps of [`fit_circle`] at most (a handful suffice on
 /// near-circles; the cap only guards a non-convergent refinement).
@@ -15,6 +16,14 @@ pub struct Circle {
     pub center: Complex64,
     /// Radius (0 for coincident points).
     pub radius: f64,
+}
+
+impl Circle {
+    /// The unit circle.
+    pub const UNIT: Self = Self {
+        center: Complex64::new(0.0, 0.0),
+        radius: 1.0,
+    };
 }
 
 /// The least-squares circle through `pts`.
@@ -137,6 +146,57 @@ pub fn circle_residual(pts: &[Complex64], circle: Circle) -> f64 {
     pts.iter()
         .map(|z| ((z - circle.center).norm() - circle.radius).abs() / circle.radius)
         .fold(0.0, f64::max)
+}
+
+/// How well one boundary loop's image lies on a circle: the circle of a loop as a disk
+/// map with holes reports it and as the metrics judge any map's loops.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct LoopCircle {
+    /// Index into `mesh.boundary_loops()`.
+    pub loop_index: usize,
+    /// Number of vertices on the loop.
+    pub vertices: usize,
+    /// Whether this is the outer loop.
+    pub outer: bool,
+    /// Centre `(u, v)` of the circle, in the coordinates of the map as given (before any
+    /// orientation fix): the loop's best-fit circle ([`fit_circle`]), or `(0, 0)` for an
+    /// outer loop judged against the unit circle.
+    pub center: [f64; 2],
+    /// Radius of the circle (1 for an outer loop judged against the unit circle).
+    pub radius: f64,
+    /// `max ||f − c| − r| / r` over the loop's vertices (relative; for the unit circle the
+    /// same as absolute). 1 for a loop collapsed to a point.
+    pub residual_max: f64,
+}
+
+impl LoopCircle {
+    /// Loop `loop_index` with `vertices` vertices on `circle`, its largest relative
+    /// distance from it `residual_max`.
+    ///
+    /// ```
+    /// use conformap_operators::{Circle, LoopCircle};
+    /// use num_complex::Complex64;
+    /// let unit = Circle { center: Complex64::new(0.0, 0.0), radius: 1.0 };
+    /// let c = LoopCircle::new(0, 12, true, unit, 1e-9);
+    /// assert_eq!((c.center, c.radius, c.residual_max), ([0.0, 0.0], 1.0, 1e-9));
+    /// ```
+    pub fn new(
+        loop_index: usize,
+        vertices: usize,
+        outer: bool,
+        circle: Circle,
+        residual_max: f64,
+    ) -> Self {
+        Self {
+            loop_index,
+            vertices,
+            outer,
+            center: [circle.center.re, circle.center.im],
+            radius: circle.radius,
+            residual_max,
+        }
+    }
 }
 
 #[cfg(test)]

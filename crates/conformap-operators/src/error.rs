@@ -23,6 +23,13 @@ pub enum OperatorError {
     /// A matrix given to [`crate::SymbolicAnalysis::factor`] does not have the pattern analysed.
     #[error("the matrix does not have the sparsity pattern that was analysed")]
     PatternMismatch,
+    /// An ordering name that [`crate::Ordering`]'s `FromStr` does not know. Fix: one of
+    /// [`crate::Ordering::NAMES`].
+    #[error("unknown ordering {name:?}; hint: use one of auto, amd, nd")]
+    UnknownOrdering {
+        /// The name given.
+        name: String,
+    },
     /// A custom ordering is not a permutation of `0..n`.
     #[error("the custom ordering is not a permutation of 0..{n}")]
     BadPermutation {

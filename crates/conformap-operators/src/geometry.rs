@@ -3,17 +3,10 @@
 use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
-/// Difference `a - b` of two 3D points.
-#[inline]
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
+use crate::vec3::{dot, sub};
 
-#[inline]
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
+/// `|a × b|`, fused (no intermediate array): the corner cotangents of this module are its
+/// only users.
 #[inline]
 fn cross_norm(a: [f64; 3], b: [f64; 3]) -> f64 {
     let x = a[1] * b[2] - a[2] * b[1];

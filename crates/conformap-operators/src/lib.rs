@@ -37,7 +37,7 @@ pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
     DenseModifiedLblt, FactorStats, InverseGram, Ordering, SymbolicAnalysis,
 };
-pub use circle::{circle_residual, fit_circle, Circle, FIT_REFINE_STEPS};
+pub use circle::{circle_residual, fit_circle, Circle, LoopCircle, FIT_REFINE_STEPS};
 pub use error::OperatorError;
 pub use geometry::{
     corner_angles, corner_cotangents, face_areas, face_points, surface_area, triangle_angles,

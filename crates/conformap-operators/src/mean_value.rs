@@ -8,17 +8,13 @@
 use conformap_mesh::TriMesh;
 use sprs::{CsMat, TriMat};
 
+use crate::vec3::{cross, dot, norm, sub};
+
 /// `tan(θ/2)` of the angle between `u` and `v`, as `|u × v| / (|u||v| + u·v)`: no
 /// cancellation for small angles, finite for every angle below `π`.
 #[inline]
 fn half_angle_tan(u: [f64; 3], v: [f64; 3]) -> f64 {
-    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    let cx = u[1] * v[2] - u[2] * v[1];
-    let cy = u[2] * v[0] - u[0] * v[2];
-    let cz = u[0] * v[1] - u[1] * v[0];
-    let nu = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-    let nv = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (cx * cx + cy * cy + cz * cz).sqrt() / (nu * nv + dot)
+    norm(cross(u, v)) / (norm(u) * norm(v) + dot(u, v))
 }
 
 /// The mean value matrix `M` of `mesh` (CSC, `n × n`, not symmetric): row `i` holds
@@ -54,12 +50,11 @@ pub fn mean_value_matrix(mesh: &TriMesh) -> CsMat<f64> {
         for k in 0..3 {
             let i = t[k] as usize;
             let (j, l) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
-            let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
             let (u, v) = (sub(p[j], p[i]), sub(p[l], p[i]));
             let h = half_angle_tan(u, v);
             // the corner at i lies on one side of edge ij and of edge il
             for (other, e) in [(j, u), (l, v)] {
-                let w = h / (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+                let w = h / norm(e);
                 tri.add_triplet(i, other, -w);
                 tri.add_triplet(i, i, w);
             }

@@ -5,6 +5,7 @@ use conformap_mesh::TriMesh;
 
 use crate::geometry::{face_points, triangle_angles};
 use crate::laplacian::cotan_laplacian;
+use crate::vec3::{cross, dot, norm, sub};
 
 /// Corner angles and cotangent weights of a mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,12 +65,9 @@ pub fn mesh_quality(mesh: &TriMesh) -> MeshQuality {
     let normal = |f: usize| {
         let p = face_points(mesh, f);
         let (u, v) = (sub(p[1], p[0]), sub(p[2], p[0]));
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let r = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let n = cross(u, v);
+        // not `vec3::normalize`: a degenerate face's normal is NaN here, never folded
+        let r = norm(n);
         n.map(|x| x / r)
     };
     let opp = mesh.opposite_halfedges();
@@ -77,7 +75,7 @@ pub fn mesh_quality(mesh: &TriMesh) -> MeshQuality {
         .filter(|&h| opp[h] != conformap_mesh::NO_HALFEDGE && (h as u32) < opp[h])
         .filter(|&h| {
             let (a, b) = (normal(h / 3), normal(opp[h] as usize / 3));
-            a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < FOLD_NORMAL_COS
+            dot(a, b) < FOLD_NORMAL_COS
         })
         .count();
     MeshQuality {
@@ -87,10 +85,6 @@ pub fn mesh_quality(mesh: &TriMesh) -> MeshQuality {
         negative_cotan_edges: negative,
         negative_cotan_edge_fraction: negative as f64 / mesh.num_edges().max(1) as f64,
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[cfg(test)]

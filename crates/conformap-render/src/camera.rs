@@ -1,6 +1,8 @@
 //! [`Camera`]: an orthographic camera that fits what it looks at, by default along the
 //! smallest principal axis of the surface.
 
+use conformap_operators::vec3::{axpy, cross, dot, normalize, sub};
+
 /// Fraction of the viewport left free on every side when a camera fits its points: 4 %.
 pub const FIT_MARGIN: f64 = 0.04;
 
@@ -28,35 +30,6 @@ pub struct Camera {
 
 /// A rectangle of the picture in pixels: `[x0, y0, x1, y1]` (`y` down).
 pub type Viewport = [f64; 4];
-
-#[inline]
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline]
-pub(crate) fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    if n > 0.0 {
-        [a[0] / n, a[1] / n, a[2] / n]
-    } else {
-        a
-    }
-}
-
-#[inline]
-fn axpy(s: f64, x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
-    [y[0] + s * x[0], y[1] + s * x[1], y[2] + s * x[2]]
-}
 
 impl Camera {
     /// A camera looking along `forward` with `up` as near the picture's up as possible,
@@ -175,11 +148,7 @@ impl Camera {
     /// `forward`; smaller is nearer) of the world point `p`.
     #[inline]
     pub fn project(&self, p: [f64; 3]) -> [f64; 3] {
-        let q = [
-            p[0] - self.center[0],
-            p[1] - self.center[1],
-            p[2] - self.center[2],
-        ];
+        let q = sub(p, self.center);
         [
             self.screen_center[0] + self.scale * dot(q, self.right),
             self.screen_center[1] - self.scale * dot(q, self.up),
@@ -203,7 +172,7 @@ pub fn principal_axes(points: &[[f64; 3]]) -> [[f64; 3]; 3] {
     }
     let mut c = [[0.0; 3]; 3];
     for p in points {
-        let q = [p[0] - mean[0], p[1] - mean[1], p[2] - mean[2]];
+        let q = sub(*p, mean);
         for i in 0..3 {
             for j in 0..3 {
                 c[i][j] += q[i] * q[j] / n;

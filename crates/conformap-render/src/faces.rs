@@ -6,10 +6,10 @@ use conformap_metrics::{face_distortion, isometric_chart, FaceDistortion};
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::camera::{cross, dot};
 use crate::colormap::Scale;
 use crate::options::ColorBy;
 use crate::param::{Domain, MapCoords};
+use conformap_operators::vec3::{cross, dot};
 
 /// Quantile of the per-face values that ends a colour scale: 0.99, so a few extreme faces
 /// (at boundary corners, where every conformal map concentrates its distortion) do not

@@ -4,7 +4,7 @@
 //!
 //! Depends on `conformap-mesh` (the validated [`conformap_mesh::TriMesh`]) and
 //! `conformap-metrics` (the per-face angle distortion, `|μ|` and areas behind the colours),
-//! plus `png` and `rayon`. Never reads mesh files and never solves anything: it draws a map
+//! `conformap-operators` (the 3D vector helpers, `vec3`), plus `png` and `rayon`. Never reads mesh files and never solves anything: it draws a map
 //! given as [`MapCoords`], whoever computed it.
 //!
 //! # Contents

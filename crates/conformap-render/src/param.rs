@@ -1,6 +1,7 @@
 //! [`MapCoords`]: the map to draw, per vertex or per corner, planar or spherical.
 
 use conformap_mesh::TriMesh;
+use conformap_operators::vec3;
 use num_complex::Complex64;
 use rayon::prelude::*;
 
@@ -120,7 +121,7 @@ impl MapCoords<'_> {
                     });
                 }
                 for (vertex, p) in points.iter().enumerate() {
-                    let length = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+                    let length = vec3::norm(*p);
                     if !length.is_finite() {
                         return Err(RenderError::NonFiniteValue {
                             what: "vertex",

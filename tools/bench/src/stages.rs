@@ -18,14 +18,12 @@
 //! peak memory was read): with AMD (the facade's default) and, when the pipeline ordered
 //! by nested dissection, with that too. It is the yardstick of the performance model
 //! (`solver / ref`). `ordering` is the pipeline's (`--ordering`, default `auto`:
-//! `conformap_disk::FactorOrdering::Auto`).
+//! `conformap_operators::Ordering::Auto`).
 
 use std::path::Path;
 use std::time::Instant;
 
-use conformap_disk::{
-    run_disk_method, DiskMethod, DiskOptions, DiskProblem, FactorOrdering, ProblemOptions,
-};
+use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem, ProblemOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_operators::{Cholesky, CholeskyOptions, Ordering};
 
@@ -157,7 +155,7 @@ pub(crate) fn peak_rss_mib() -> f64 {
 /// factorizations of `L_II` (AMD, and nested dissection too when the pipeline used it).
 pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, String> {
     let method: DiskMethod = method.parse().map_err(|e| format!("{e}"))?;
-    let ordering: FactorOrdering = ordering.parse()?;
+    let ordering: Ordering = ordering.parse().map_err(|e| format!("{e}"))?;
     let t_all = Instant::now();
     let t = Instant::now();
     let loaded = conformap_io::read_mesh(path).map_err(|e| e.to_string())?;
@@ -189,7 +187,12 @@ pub fn run_once(path: &Path, method: &str, ordering: &str) -> Result<StageRow, S
     let _ = std::fs::remove_file(&dest);
     let total = ms(t_all);
     let peak = peak_rss_mib();
-    let stages = out.report.stages_ms.clone().unwrap_or_default();
+    let stages = out
+        .report
+        .ccem
+        .as_ref()
+        .map(|c| c.stages_ms.clone())
+        .unwrap_or_default();
     // the yardstick: one more factorization of the same matrix with the facade's defaults
     // (AMD), and one with nested dissection when the pipeline used it; the fastest of
     // these and the pipeline's own is "one factorization"

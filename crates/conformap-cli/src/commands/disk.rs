@@ -5,9 +5,10 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use conformap_disk::{koebe_peak_bytes, unfold_disk_map, ProblemOptions};
-use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem, FactorOrdering};
+use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_operators::Ordering;
 use conformap_operators::PeakMemory;
 use conformap_sphere::{double_cover_disk_map, SphereOptions};
 use serde_json::json;
@@ -55,7 +56,7 @@ impl Method {
 }
 
 /// The fill-reducing ordering of the factorization of `L_II` (see
-/// `conformap_disk::FactorOrdering`).
+/// `conformap_operators::Ordering`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum OrderingArg {
     /// Nested dissection from 200,000 interior vertices, AMD below (default).
@@ -67,11 +68,11 @@ pub enum OrderingArg {
 }
 
 impl OrderingArg {
-    fn library(self) -> FactorOrdering {
+    fn library(self) -> Ordering {
         match self {
-            Self::Auto => FactorOrdering::Auto,
-            Self::Amd => FactorOrdering::Amd,
-            Self::Nd => FactorOrdering::NestedDissection,
+            Self::Auto => Ordering::Auto,
+            Self::Amd => Ordering::Amd,
+            Self::Nd => Ordering::NestedDissection,
         }
     }
 }

@@ -19,8 +19,8 @@ use crate::ccem::hessian::Preconditioner;
 use crate::ccem::line_search::{is_wolfe, wolfe_search, LineOutcome, LinePoint, WolfeParams};
 use crate::ccem::options::{CcemOptions, CcemVariant};
 use crate::ccem::qn::Bfgs;
-use crate::ccem::report::{LineSearchReport, StepRecord};
 use crate::ccem::schur::Schur;
+use crate::report::{LineSearchReport, StepRecord};
 
 /// Euclidean norm.
 pub(crate) fn norm(v: &[f64]) -> f64 {

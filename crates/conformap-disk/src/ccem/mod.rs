@@ -5,233 +5,36 @@ mod descent;
 mod energy;
 mod hessian;
 mod line_search;
+mod minimize;
 mod mobius_align;
 mod options;
 mod qn;
-mod report;
 mod schur;
 #[cfg(test)]
 mod speed_tests;
+mod start;
 #[cfg(test)]
 pub(crate) mod tests;
 
 pub use options::{CcemOptions, CcemStart, CcemVariant};
-pub use report::{BoundaryReport, CcemStages, LineSearchReport, SchurReport, StepRecord};
 pub use schur::SchurMode;
 
 use std::time::Instant;
 
-use num_complex::Complex64;
-
-use crate::angles::{
-    largest_gap, min_gap, project_to_floor, unwrap_boundary, GAP_FLOOR_MAX, GAP_FLOOR_STEP,
-};
+use crate::angles::{min_gap, unwrap_boundary, GAP_FLOOR_MAX};
 use crate::ccem::descent::{Descent, Stop};
 use crate::ccem::energy::{evaluate, Eval};
-use crate::ccem::hessian::{Preconditioner, HESSIAN_BAND};
+use crate::ccem::minimize::{minimize_valid, precondition};
 use crate::ccem::mobius_align::align;
 use crate::ccem::schur::Schur;
-use crate::cem::CemOptions;
-use crate::cem::{cem, interior_residual};
-use crate::initial::{
-    angenent_boundary, angenent_from_schur, angenent_rhs, arc_length_boundary, centre_face,
-};
-use crate::laplacian_choice::count_flipped;
+use crate::ccem::start::{cem_start, harmonic_measure_source, schur_for_start, schur_start, Start};
+use crate::cem::interior_residual;
+use crate::initial::centre_face;
 use crate::problem::DiskProblem;
-use crate::report::{DiskMap, SolverReport, Timings};
+use crate::report::{
+    BoundaryReport, CcemReport, CcemStages, DiskMap, SchurReport, SolverReport, Timings,
+};
 use crate::DiskError;
-
-/// Refreshes of the Hessian preconditioner at a tolerance stop with gaps held at the floor
-/// (each costs one dense factorization, `n_B³ / 6` multiply–adds). igea_open.obj (7 gaps
-/// held): 2 refreshes take the harmonic-measure start's stop from E_C = 2.909386e-2 to
-/// 2.909322e-2, below the 2.909366e-2 that Angenent's start reached.
-pub(crate) const HELD_REFRESHES: usize = 4;
-
-/// The Hessian preconditioner at `at`: its band from `min_nb` boundary vertices on
-/// ([`CcemOptions::banded_hessian_min_nb`]; falling back to the whole Hessian if the band
-/// cannot be factored), else the whole Hessian.
-fn precondition(a: &[f64], at: &Eval, min_nb: usize) -> Option<Preconditioner> {
-    if at.theta.len() >= min_nb {
-        if let Some(p) = Preconditioner::banded(a, at, HESSIAN_BAND) {
-            return Some(p);
-        }
-    }
-    Preconditioner::at(a, at)
-}
-
-/// Möbius re-alignments at the stops of a descent preconditioned by the banded Hessian
-/// (each a few products with `A`).
-pub(crate) const BANDED_REALIGNMENTS: usize = 3;
-
-/// What the start produced.
-struct Start {
-    boundary: Vec<Complex64>,
-    extra_factor_ms: f64,
-    /// Factorizations beyond the problem's own.
-    extra_factorizations: usize,
-    /// What the start was, for the notes.
-    note: String,
-}
-
-/// The arc-length start, with a note saying why it was used.
-fn arc_start(problem: &DiskProblem<'_>, why: Option<String>) -> Start {
-    Start {
-        boundary: arc_length_boundary(problem.mesh(), &problem.partition().boundary),
-        extra_factor_ms: 0.0,
-        extra_factorizations: 0,
-        note: why.unwrap_or_else(|| "started from the arc-length boundary".to_string()),
-    }
-}
-
-/// The CEM start (`CcemStart::Cem`): runs CEM with its own second factorization.
-fn cem_start(problem: &mut DiskProblem<'_>, o: &CemOptions) -> Result<Start, DiskError> {
-    match cem(problem, o) {
-        Ok(out) => {
-            let boundary = problem.partition().boundary_values(&out.map);
-            let extra = out.report.timings_ms.factor - problem.factor_ms;
-            let r = &out.report;
-            let note = format!(
-                "started from CEM ({} iterations, E_C = {:.6e})",
-                r.iterations,
-                r.energy_history
-                    .get(r.best_iteration)
-                    .copied()
-                    .unwrap_or(f64::NAN)
-            );
-            Ok(Start {
-                boundary,
-                extra_factorizations: out.report.factorizations.saturating_sub(1),
-                extra_factor_ms: extra.max(0.0),
-                note,
-            })
-        }
-        // CEM's own numerical failures (a boundary vertex collapsing to the centre on
-        // a tiny mesh) are no reason to give up: any ordered boundary is a start
-        Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
-            Ok(arc_start(
-                problem,
-                Some(format!(
-                    "CEM failed ({e}); started from the arc-length boundary"
-                )),
-            ))
-        }
-        Err(e) => Err(e),
-    }
-}
-
-/// The interior vertex the harmonic-measure start looks from: a vertex of the centre face
-/// ([`centre_face`], which prefers faces off the boundary), else the first interior vertex.
-fn harmonic_measure_source(problem: &DiskProblem<'_>, face: usize) -> Option<u32> {
-    let mesh = problem.mesh();
-    let part = problem.partition();
-    let interior = |v: u32| part.is_interior.get(v as usize).copied().unwrap_or(false);
-    mesh.faces()
-        .get(face)
-        .and_then(|t| t.iter().copied().find(|&v| interior(v)))
-        .or_else(|| part.interior.first().copied())
-}
-
-/// The harmonic-measure start (`CcemStart::HarmonicMeasure`, see [`crate::ccem::mobius_align`]):
-/// the fluxes `−L_BI L_II⁻¹ e_p` from the pass that formed `A` (or one solve when `A` is
-/// implicit), accumulated into angles. Negative fluxes (possible where cotangent weights
-/// are negative) count as zero; a start that cannot be formed falls back to the
-/// arc-length boundary, with a note.
-fn harmonic_measure_start(
-    problem: &DiskProblem<'_>,
-    schur: &Schur<'_, '_>,
-    source: Option<u32>,
-) -> Start {
-    let Some(p) = source else {
-        return arc_start(
-            problem,
-            Some(
-                "no interior vertex for the harmonic measure: started from the arc-length boundary"
-                    .into(),
-            ),
-        );
-    };
-    let coupling = match schur.coupling() {
-        Some(c) => c.to_vec(),
-        None => {
-            let part = problem.partition();
-            let mut rhs = vec![Complex64::new(0.0, 0.0); part.interior.len()];
-            rhs[part.local[p as usize] as usize] = Complex64::new(1.0, 0.0);
-            let x = problem.interior_factor().solve_complex(&rhs);
-            problem.blocks().bi_mul(&x)
-        }
-    };
-    let flux: Vec<f64> = coupling.iter().map(|z| (-z.re).max(0.0)).collect();
-    let total: f64 = flux.iter().sum();
-    if !(total.is_finite() && total > 0.0) {
-        return arc_start(
-            problem,
-            Some(format!(
-                "the harmonic measure from vertex {p} vanished: started from the arc-length boundary"
-            )),
-        );
-    }
-    let mut acc = 0.0;
-    let boundary = flux
-        .iter()
-        .map(|w| {
-            let w = w / total;
-            let t = std::f64::consts::TAU * (acc + 0.5 * w);
-            acc += w;
-            Complex64::from_polar(1.0, t)
-        })
-        .collect();
-    Start {
-        boundary,
-        extra_factor_ms: 0.0,
-        extra_factorizations: 0,
-        note: format!(
-            "started from the harmonic measure seen from vertex {p} (total flux {total:.12})"
-        ),
-    }
-}
-
-/// The Angenent start (`CcemStart::Angenent`): from the dense Schur complement when there
-/// is one (no further factorization), else by [`angenent_boundary`] (a second one).
-fn angenent_start(
-    problem: &DiskProblem<'_>,
-    schur: &Schur<'_, '_>,
-    face: usize,
-) -> Result<Start, DiskError> {
-    let out = match (schur.dense(), schur.coupling()) {
-        (Some(a), Some(c)) => angenent_from_schur(problem, face, a, c).map(|b| (b, 0)),
-        _ => angenent_boundary(problem).map(|b| (b, 1)),
-    };
-    match out {
-        Ok((init, extra)) => Ok(Start {
-            note: format!(
-                "started from Angenent's map (source face {}{}{})",
-                init.face,
-                if init.conjugated {
-                    ", conjugated to preserve orientation"
-                } else {
-                    ""
-                },
-                if extra > 0 {
-                    ", with a second factorization"
-                } else {
-                    ", from the Schur complement"
-                },
-            ),
-            boundary: init.boundary,
-            extra_factor_ms: if extra > 0 { init.factor_ms } else { 0.0 },
-            extra_factorizations: extra,
-        }),
-        Err(e @ (DiskError::BoundaryCollapsed { .. } | DiskError::NonFinite { .. })) => {
-            Ok(arc_start(
-                problem,
-                Some(format!(
-                    "Angenent's map failed ({e}); started from the arc-length boundary"
-                )),
-            ))
-        }
-        Err(e) => Err(e),
-    }
-}
 
 /// The CCEM disk map (Kuo, Lin, Yueh, Yau 2021): minimizes the conformal energy over the
 /// boundary angles, `E_C(θ) = ½ pᵀAp + ½ qᵀAq − ½ pᵀCq` (Eq. 3.17) with the Schur
@@ -297,30 +100,94 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
         CcemStart::Cem(o) => Some(cem_start(problem, o)?),
         _ => None,
     };
-    let cem_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let cem_ms = ms_since(t0);
     let problem: &DiskProblem<'_> = problem;
     let face = centre_face(problem.mesh());
     let source = harmonic_measure_source(problem, face);
-    let schur = match (options.start, source) {
-        (CcemStart::Angenent, _) => {
-            Schur::with_rhs(problem, options.schur, &angenent_rhs(problem.mesh(), face))
-        }
-        (CcemStart::HarmonicMeasure, Some(p)) => {
-            Schur::with_rhs(problem, options.schur, &[(p, Complex64::new(1.0, 0.0))])
-        }
-        _ => Schur::new(problem, options.schur),
-    };
+    let schur = schur_for_start(problem, options, face, source);
     let t_start = Instant::now();
     let start = match cem_first {
         Some(s) => s,
-        None => match options.start {
-            CcemStart::Angenent => angenent_start(problem, &schur, face)?,
-            CcemStart::HarmonicMeasure => harmonic_measure_start(problem, &schur, source),
-            _ => arc_start(problem, None),
-        },
+        None => schur_start(problem, options, &schur, face, source)?,
     };
-    let start_ms = cem_ms + t_start.elapsed().as_secs_f64() * 1e3;
+    let start_ms = cem_ms + ms_since(t_start);
     let mut notes = vec![start.note.clone()];
+    let (cur, repaired, align_ms) = starting_iterate(problem, &schur, &start, options, &mut notes)?;
+    let mut descent = Descent::new(&schur, options);
+    let t_pre = Instant::now();
+    precondition_at_start(&mut descent, &cur, &mut notes);
+    let precond_ms = ms_since(t_pre);
+    descent.log_state(&cur);
+    let floor_max = GAP_FLOOR_MAX.min(0.1 * std::f64::consts::TAU / problem.num_boundary() as f64);
+    let t_iter = Instant::now();
+    let (cur, stop, map, flips, finish_ms) =
+        minimize_valid(problem, &mut descent, cur, floor_max, &mut notes)?;
+    let iterations_ms = ms_since(t_iter) - finish_ms;
+    stop_notes(problem, &descent, stop, &mut notes);
+    let finished_at = ms_since(t0);
+    let residual = interior_residual(problem, &map);
+    let elapsed = ms_since(t0);
+    let mut stages = CcemStages {
+        start: start_ms + align_ms + precond_ms,
+        schur: schur.form_ms,
+        iterations: iterations_ms,
+        finish: finish_ms,
+    };
+    let boundary = boundary_report(&cur, &descent, repaired, flips);
+    let mut ls = descent.ls;
+    ls.qn_pairs_skipped = descent.bfgs.skipped;
+    stages.finish += ms_since(t0) - finished_at;
+    let report = SolverReport {
+        method: if options.variant == CcemVariant::QuasiNewton {
+            "ccem-qn"
+        } else {
+            "ccem"
+        }
+        .to_string(),
+        iterations: descent.iterations,
+        converged: matches!(stop, Stop::Tolerance | Stop::Rounding),
+        best_iteration: descent.history.len() - 1,
+        energy_history: descent.history,
+        residual,
+        factorizations: 1 + start.extra_factorizations,
+        notes,
+        fallback_from: None,
+        timings_ms: Timings {
+            assemble: problem.assemble_ms,
+            factor: problem.factor_ms + start.extra_factor_ms,
+            solve: elapsed - start.extra_factor_ms,
+            total: problem.setup_ms + elapsed,
+        },
+        ccem: Some(CcemReport {
+            gradient_norm_history: descent.gnorm,
+            line_search: ls,
+            schur: schur_report(&schur),
+            stages_ms: stages,
+            boundary,
+        }),
+    };
+    Ok(DiskMap { map, report })
+}
+
+/// Milliseconds since `t`.
+fn ms_since(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// The first iterate: the start's angles unwrapped (gaps below `min_gap` repaired) and,
+/// for the harmonic-measure start, Möbius-aligned. Returns it, the number of repaired gaps
+/// and the milliseconds of the alignment.
+///
+/// # Errors
+/// [`DiskError::InvalidStart`] when the start does not wind once around the circle;
+/// [`DiskError::NonFinite`] when its energy is not finite.
+fn starting_iterate(
+    problem: &DiskProblem<'_>,
+    schur: &Schur<'_, '_>,
+    start: &Start,
+    options: &CcemOptions,
+    notes: &mut Vec<String>,
+) -> Result<(Eval, usize, f64), DiskError> {
     let unwrapped =
         unwrap_boundary(&start.boundary, options.min_gap).ok_or(DiskError::InvalidStart)?;
     if unwrapped.repaired > 0 {
@@ -330,7 +197,8 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             unwrapped.repaired
         ));
     }
-    let mut cur = evaluate(&schur, unwrapped.theta);
+    let repaired = unwrapped.repaired;
+    let mut cur = evaluate(schur, unwrapped.theta);
     if !cur.energy.is_finite() {
         return Err(DiskError::NonFinite {
             vertex: problem.partition().boundary[0] as usize,
@@ -340,57 +208,64 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
     let mut align_ms = 0.0;
     if options.start == CcemStart::HarmonicMeasure {
         let t_align = Instant::now();
-        let (aligned, a) = align(&schur, cur, options.tol);
+        let (aligned, a) = align(schur, cur, options.tol);
         cur = aligned;
         notes.push(format!(
             "Möbius-aligned: {} rounds, |b| {:.3e} in all, E_C {:.9e} → {:.9e}, {} products",
             a.rounds, a.moved, a.energy_before, a.energy_after, a.products,
         ));
-        align_ms = t_align.elapsed().as_secs_f64() * 1e3;
+        align_ms = ms_since(t_align);
     }
-    let mut descent = Descent::new(&schur, options);
-    let qn = options.variant == CcemVariant::QuasiNewton;
-    let t_pre = Instant::now();
-    // also at a repaired start (gaps set to the floor where the start stepped backwards):
-    // its Hessian describes some artificial crowding, but together with the quasi-Newton
-    // restarts of `Descent::minimize` it still cuts the iterations (alligator.obj 151 →
-    // 50, igea_open.obj 125 → 40 to a lower minimum, a hemisphere 182 → 5)
-    if qn && options.hessian_preconditioner {
-        if let Some(a) = schur.dense() {
-            descent.precond = precondition(a, &cur, options.banded_hessian_min_nb);
-            match &descent.precond {
-                Some(p) if p.band.is_some() => notes.push(format!(
-                    "BFGS preconditioned by the band (half-width {}) of the Hessian at the \
-                     start{}",
-                    p.band.unwrap_or(0),
-                    if p.modified > 0 {
-                        format!("; shifted {} times to be positive definite", p.modified)
-                    } else {
-                        String::new()
-                    }
-                )),
-                Some(p) => notes.push(format!(
-                    "BFGS preconditioned by the exact Hessian at the start{}",
-                    if p.modified > 0 {
-                        format!("; {} negative curvatures flipped", p.modified)
-                    } else {
-                        String::new()
-                    }
-                )),
-                None => {
-                    notes.push("the Hessian at the start could not be formed: plain BFGS".into())
-                }
+    Ok((cur, repaired, align_ms))
+}
+
+/// Sets the quasi-Newton variant's preconditioner: the Hessian (or its band) at the start,
+/// when `A` is dense and [`CcemOptions::hessian_preconditioner`] asks for it; the note
+/// says which.
+///
+/// Also at a repaired start (gaps set to the floor where the start stepped backwards): its
+/// Hessian describes some artificial crowding, but together with the quasi-Newton restarts
+/// of `Descent::minimize` it still cuts the iterations (alligator.obj 151 → 50,
+/// igea_open.obj 125 → 40 to a lower minimum, a hemisphere 182 → 5).
+fn precondition_at_start(descent: &mut Descent<'_, '_, '_>, cur: &Eval, notes: &mut Vec<String>) {
+    let options = descent.options;
+    if options.variant != CcemVariant::QuasiNewton || !options.hessian_preconditioner {
+        return;
+    }
+    let Some(a) = descent.schur.dense() else {
+        return;
+    };
+    descent.precond = precondition(a, cur, options.banded_hessian_min_nb);
+    notes.push(match &descent.precond {
+        Some(p) if p.band.is_some() => format!(
+            "BFGS preconditioned by the band (half-width {}) of the Hessian at the start{}",
+            p.band.unwrap_or(0),
+            if p.modified > 0 {
+                format!("; shifted {} times to be positive definite", p.modified)
+            } else {
+                String::new()
             }
-        }
-    }
-    let precond_ms = t_pre.elapsed().as_secs_f64() * 1e3;
-    descent.log_state(&cur);
-    let floor_max = GAP_FLOOR_MAX.min(0.1 * std::f64::consts::TAU / problem.num_boundary() as f64);
-    let t_iter = Instant::now();
-    let (cur, stop, map, flips, finish_ms) =
-        minimize_valid(problem, &mut descent, cur, floor_max, &mut notes)?;
-    let iterations_ms = t_iter.elapsed().as_secs_f64() * 1e3 - finish_ms;
-    let converged = matches!(stop, Stop::Tolerance | Stop::Rounding);
+        ),
+        Some(p) => format!(
+            "BFGS preconditioned by the exact Hessian at the start{}",
+            if p.modified > 0 {
+                format!("; {} negative curvatures flipped", p.modified)
+            } else {
+                String::new()
+            }
+        ),
+        None => "the Hessian at the start could not be formed: plain BFGS".into(),
+    });
+}
+
+/// The notes of the end of a run: why it stopped, the gaps held at the floor, the Schur
+/// complement's path, a preconditioner dropped on the way.
+fn stop_notes(
+    problem: &DiskProblem<'_>,
+    descent: &Descent<'_, '_, '_>,
+    stop: Stop,
+    notes: &mut Vec<String>,
+) {
     match stop {
         Stop::Rounding => {
             notes.push("stopped: no decrease left above the rounding level of E_C".into())
@@ -399,178 +274,51 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
         Stop::MaxIter => notes.push("stopped at the iteration cap".into()),
         Stop::Tolerance => {}
     }
-    let (gap, after) = min_gap(&cur.theta);
-    let held = descent.held;
-    if held > 0 {
+    if descent.held > 0 {
         notes.push(format!(
-            "{held} boundary gaps held at the floor {:.1e} rad: the conformal map crowds \
+            "{} boundary gaps held at the floor {:.1e} rad: the conformal map crowds \
              these boundary vertices closer than that; the map is the energy minimum with \
              the boundary kept in order",
-            descent.floor
+            descent.held, descent.floor
         ));
     }
+    let schur = descent.schur;
     notes.push(format!(
         "Schur complement {} (n_B = {}), {} products",
         schur.mode().name(),
         problem.num_boundary(),
         schur.products()
     ));
-    let finished_at = t0.elapsed().as_secs_f64() * 1e3;
-    let residual = interior_residual(problem, &map);
-    let elapsed = t0.elapsed().as_secs_f64() * 1e3;
-    let factorizations = 1 + start.extra_factorizations;
     if descent.precond_dropped {
         notes.push(
             "a search along the preconditioned direction stalled: continued as plain BFGS".into(),
         );
     }
-    let mut ls = descent.ls;
-    ls.qn_pairs_skipped = descent.bfgs.skipped;
-    let report = SolverReport {
-        method: if qn { "ccem-qn" } else { "ccem" }.to_string(),
-        iterations: descent.iterations,
-        converged,
-        best_iteration: descent.history.len() - 1,
-        energy_history: descent.history,
-        residual,
-        factorizations,
-        notes,
-        fallback_from: None,
-        timings_ms: Timings {
-            assemble: problem.assemble_ms,
-            factor: problem.factor_ms + start.extra_factor_ms,
-            solve: elapsed - start.extra_factor_ms,
-            total: problem.setup_ms + elapsed,
-        },
-        gradient_norm_history: descent.gnorm,
-        line_search: Some(ls),
-        schur: Some(SchurReport {
-            mode: schur.mode().name().to_string(),
-            form_ms: schur.form_ms,
-            products: schur.products(),
-        }),
-        stages_ms: Some(CcemStages {
-            start: start_ms + align_ms + precond_ms,
-            schur: schur.form_ms,
-            iterations: iterations_ms,
-            finish: finish_ms + (t0.elapsed().as_secs_f64() * 1e3 - finished_at),
-        }),
-        boundary: Some(BoundaryReport {
-            min_gap: gap,
-            min_gap_after: after,
-            gap_floor: descent.floor,
-            gaps_at_floor: held,
-            start_repaired_gaps: unwrapped.repaired,
-            flipped_faces: flips,
-        }),
-    };
-    Ok(DiskMap { map, report })
 }
 
-/// Minimizes, maps the interior, and checks the map for folds. A fold with gaps at the
-/// floor means the floor is below what f64 resolves for this mesh: the floor is raised
-/// ([`GAP_FLOOR_STEP`]) and the minimization continues from the angles projected onto it,
-/// up to `floor_max`. Returns the last iterate, why it stopped, the map, its flipped
-/// faces (0) and the milliseconds spent in harmonic solves and fold checks.
-///
-/// # Errors
-/// [`DiskError::Folded`] when the map still folds at the highest floor, or folds with no
-/// gap at the floor (the cotangent weights of the mesh, not the boundary, fold it).
-fn minimize_valid(
-    problem: &DiskProblem<'_>,
-    descent: &mut Descent<'_, '_, '_>,
-    mut cur: Eval,
-    floor_max: f64,
-    notes: &mut Vec<String>,
-) -> Result<(Eval, Stop, Vec<Complex64>, usize, f64), DiskError> {
-    let mut finish_ms = 0.0;
-    loop {
-        let (mut last, mut stop) = descent.minimize(cur);
-        // gaps held at the floor bend the energy surface away from what the Hessian at the
-        // start describes, and the tolerance stop can come early: refresh the
-        // preconditioner where the descent stopped and go on while that still lowers E_C
-        let mut refreshes = 0;
-        while descent.held > 0
-            && stop == Stop::Tolerance
-            && descent.precond.is_some()
-            && refreshes < HELD_REFRESHES
-        {
-            let Some(a) = descent.schur.dense() else {
-                break;
-            };
-            let before = last.energy;
-            descent.precond = precondition(a, &last, descent.options.banded_hessian_min_nb);
-            descent.bfgs.reset();
-            refreshes += 1;
-            let (next, s) = descent.minimize(last);
-            last = next;
-            stop = s;
-            if !(before - last.energy > descent.options.tol * last.energy.abs()) {
-                break;
-            }
-        }
-        if refreshes > 0 {
-            notes.push(format!(
-                "{refreshes} Hessian refreshes at the stops with gaps held at the floor"
-            ));
-        }
-        // a banded preconditioner leaves out the far couplings that set the two soft
-        // Möbius directions: at its stop, align along the orbit again and go on while that
-        // lowers E_C by more than the tolerance
-        let mut realigned = 0;
-        while descent.precond.as_ref().is_some_and(|p| p.band.is_some())
-            && matches!(stop, Stop::Tolerance | Stop::Rounding)
-            && realigned < BANDED_REALIGNMENTS
-        {
-            let tol = descent.options.tol;
-            let (aligned, a) = align(descent.schur, last, tol);
-            realigned += 1;
-            last = aligned;
-            if !(a.energy_before - a.energy_after > tol * a.energy_after.abs()) {
-                break;
-            }
-            descent.bfgs.reset();
-            descent.log_state(&last);
-            let (next, s) = descent.minimize(last);
-            last = next;
-            stop = s;
-        }
-        if realigned > 0 {
-            notes.push(format!(
-                "{realigned} Möbius re-alignments at the stops of the banded preconditioner"
-            ));
-        }
-        cur = last;
-        let t = Instant::now();
-        let map = problem.harmonic_extension(&cur.f);
-        let (flips, face) = count_flipped(problem.mesh(), &map);
-        let face = face.unwrap_or(usize::MAX);
-        finish_ms += t.elapsed().as_secs_f64() * 1e3;
-        if flips == 0 {
-            return Ok((cur, stop, map, 0, finish_ms));
-        }
-        let next = descent.floor * GAP_FLOOR_STEP;
-        let crowded = descent.held > 0 || min_gap(&cur.theta).0 < next;
-        let folded = DiskError::Folded {
-            flipped_faces: flips,
-            face,
-            held_gaps: descent.held,
-            floor: descent.floor,
-        };
-        if !crowded || next > floor_max {
-            return Err(folded);
-        }
-        let Some(theta) = project_to_floor(&cur.theta, next, largest_gap(&cur.theta)) else {
-            return Err(folded);
-        };
-        notes.push(format!(
-            "{flips} faces folded with boundary gaps at {:.0e} rad (below what f64 resolves \
-             on this mesh): floor raised to {next:.0e}",
-            descent.floor
-        ));
-        descent.floor = next;
-        descent.bfgs.reset();
-        cur = evaluate(descent.schur, theta);
-        descent.log_state(&cur);
+/// The report's account of the final boundary `cur`.
+fn boundary_report(
+    cur: &Eval,
+    descent: &Descent<'_, '_, '_>,
+    repaired: usize,
+    flips: usize,
+) -> BoundaryReport {
+    let (gap, after) = min_gap(&cur.theta);
+    BoundaryReport {
+        min_gap: gap,
+        min_gap_after: after,
+        gap_floor: descent.floor,
+        gaps_at_floor: descent.held,
+        start_repaired_gaps: repaired,
+        flipped_faces: flips,
+    }
+}
+
+/// The report's account of how `A` was applied.
+fn schur_report(schur: &Schur<'_, '_>) -> SchurReport {
+    SchurReport {
+        mode: schur.mode().name().to_string(),
+        form_ms: schur.form_ms,
+        products: schur.products(),
     }
 }

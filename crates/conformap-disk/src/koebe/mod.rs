@@ -10,13 +10,12 @@ mod step;
 mod step_newton;
 
 pub use options::KoebeOptions;
-pub use report::{
-    CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, LoopCircleFit, PolishReport,
-};
+pub use report::{CircleDomainMap, KoebeReport, KoebeStepRecord, KoebeTimings, PolishReport};
 
 use std::time::Instant;
 
 use conformap_mesh::{fill_all_holes_except, Topology, TriMesh};
+use conformap_operators::LoopCircle;
 use num_complex::Complex64;
 
 use crate::koebe::circle_fit::{
@@ -381,7 +380,7 @@ fn normalize(mesh: &TriMesh, z: &mut [Complex64], outer: usize, reference: Optio
 }
 
 /// The report's circle of every loop in the normalized map.
-fn loop_circles(mesh: &TriMesh, z: &[Complex64], outer: usize) -> Vec<LoopCircleFit> {
+fn loop_circles(mesh: &TriMesh, z: &[Complex64], outer: usize) -> Vec<LoopCircle> {
     let loops = mesh.boundary_loops();
     fits(mesh, z)
         .into_iter()
@@ -392,23 +391,9 @@ fn loop_circles(mesh: &TriMesh, z: &[Complex64], outer: usize) -> Vec<LoopCircle
                     .iter()
                     .map(|&v| (z[v as usize].norm() - 1.0).abs())
                     .fold(0.0, f64::max);
-                LoopCircleFit {
-                    loop_index: l,
-                    vertices: loops[l].len(),
-                    outer: true,
-                    center: [0.0, 0.0],
-                    radius: 1.0,
-                    residual_max,
-                }
+                LoopCircle::new(l, loops[l].len(), true, Circle::UNIT, residual_max)
             } else {
-                LoopCircleFit {
-                    loop_index: l,
-                    vertices: loops[l].len(),
-                    outer: false,
-                    center: [fit.center.re, fit.center.im],
-                    radius: fit.radius,
-                    residual_max: residual,
-                }
+                LoopCircle::new(l, loops[l].len(), false, fit, residual)
             }
         })
         .collect()

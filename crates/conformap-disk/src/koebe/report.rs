@@ -1,29 +1,11 @@
 //! What [`crate::koebe`] returns: the map, the circles of its loops, and the account of the
 //! iteration.
 
+use conformap_operators::LoopCircle;
 use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::SolverReport;
-
-/// One boundary loop of the final map and its circle.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-#[non_exhaustive]
-pub struct LoopCircleFit {
-    /// Index into `mesh.boundary_loops()`.
-    pub loop_index: usize,
-    /// Vertices on the loop.
-    pub vertices: usize,
-    /// Whether this is the outer loop (the unit circle).
-    pub outer: bool,
-    /// Centre `(u, v)` of the loop's best-fit circle (least squares on the geometric
-    /// distances; `(0, 0)` for the outer loop).
-    pub center: [f64; 2],
-    /// Its radius (1 for the outer loop).
-    pub radius: f64,
-    /// `max ||f − c| − r| / r` over the loop's vertices.
-    pub residual_max: f64,
-}
 
 /// One Koebe step (one map of a filled planar mesh with one loop open).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
@@ -137,7 +119,7 @@ pub struct CircleDomainMap {
     /// [`crate::koebe`] describes.
     pub map: Vec<Complex64>,
     /// Every boundary loop's circle in the normalized map, in loop order.
-    pub circles: Vec<LoopCircleFit>,
+    pub circles: Vec<LoopCircle>,
     /// The hole made concentric with the unit circle by the normalization (the hole loop of
     /// smallest index), `None` without holes.
     pub reference_hole: Option<usize>,

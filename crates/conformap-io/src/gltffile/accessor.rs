@@ -3,7 +3,6 @@
 //! panic, and the number of elements read is bounded by the bytes actually present.
 
 use gltf::accessor::{DataType, Dimensions};
-use gltf::buffer::Data;
 use gltf::Accessor;
 
 /// Where an accessor's elements are: the bytes from its first element to the end of its
@@ -66,7 +65,7 @@ fn dims(d: Dimensions) -> usize {
 }
 
 /// Checks the accessor's byte range against its buffer view and buffer.
-fn layout<'b>(acc: &Accessor<'_>, buffers: &'b [Data]) -> Result<Layout<'b>, String> {
+fn layout<'b>(acc: &Accessor<'_>, buffers: &'b [Vec<u8>]) -> Result<Layout<'b>, String> {
     if acc.sparse().is_some() {
         return Err("sparse accessors are not supported; re-export without sparse storage".into());
     }
@@ -79,9 +78,9 @@ fn layout<'b>(acc: &Accessor<'_>, buffers: &'b [Data]) -> Result<Layout<'b>, Str
     let view_end = view
         .offset()
         .checked_add(view.length())
-        .filter(|&end| end <= data.0.len())
+        .filter(|&end| end <= data.len())
         .ok_or("bufferView extends past the end of its buffer")?;
-    let view_bytes = &data.0[view.offset()..view_end];
+    let view_bytes = &data[view.offset()..view_end];
     let component = acc.data_type();
     let elem = component_size(component) * dims(acc.dimensions());
     let stride = view.stride().unwrap_or(elem);
@@ -113,7 +112,7 @@ fn layout<'b>(acc: &Accessor<'_>, buffers: &'b [Data]) -> Result<Layout<'b>, Str
 /// `N`-component float (or normalized unsigned integer, if `allow_normalized`) elements.
 pub(crate) fn read_floats<const N: usize>(
     acc: &Accessor<'_>,
-    buffers: &[Data],
+    buffers: &[Vec<u8>],
     allow_normalized: bool,
 ) -> Result<Vec<[f64; N]>, String> {
     if dims(acc.dimensions()) != N {
@@ -153,7 +152,7 @@ pub(crate) fn read_floats<const N: usize>(
 }
 
 /// Scalar unsigned integer indices.
-pub(crate) fn read_indices(acc: &Accessor<'_>, buffers: &[Data]) -> Result<Vec<u32>, String> {
+pub(crate) fn read_indices(acc: &Accessor<'_>, buffers: &[Vec<u8>]) -> Result<Vec<u32>, String> {
     let ok = matches!(
         acc.data_type(),
         DataType::U8 | DataType::U16 | DataType::U32

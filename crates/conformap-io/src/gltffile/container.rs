@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::error::{IoError, GLTF_HINT};
+use crate::error::{IoError, WriteProblem, GLTF_HINT};
 use crate::loaded::Format;
 
 /// A GLB header: magic, version, total length (12 bytes).
@@ -100,6 +100,33 @@ pub(crate) fn check_container(bytes: &[u8], path: &Path, format: Format) -> Resu
         at += CHUNK_HEADER + chunk;
     }
     Ok(())
+}
+
+/// The bytes of a GLB: the 12-byte header, the JSON chunk (space-padded) and the BIN chunk
+/// (zero-padded), as [`check_container`] reads them back.
+///
+/// # Errors
+/// [`WriteProblem::TooLarge`] when a length does not fit the header's `u32`.
+pub(super) fn encode_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, WriteProblem> {
+    while json.len() % 4 != 0 {
+        json.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = HEADER + CHUNK_HEADER + json.len() + CHUNK_HEADER + bin.len();
+    let u = |x: usize| u32::try_from(x).map_err(|_| WriteProblem::TooLarge);
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&u(total)?.to_le_bytes());
+    out.extend_from_slice(&u(json.len())?.to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&u(bin.len())?.to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    Ok(out)
 }
 
 /// The JSON text of a glTF or GLB file (the JSON chunk of a GLB that passed
@@ -203,6 +230,16 @@ mod tests {
         assert!(msg(b"glTX\x02\0\0\0").contains("`glTX`"));
         assert!(check_container(b" {}", p, Format::Glb).is_ok());
         assert!(check_container(b"xyz", p, Format::Gltf).is_ok());
+    }
+
+    #[test]
+    fn encoded_glbs_pass_the_checks() {
+        let bytes = encode_glb(b"{}".to_vec(), vec![1, 2, 3, 4, 5]).unwrap();
+        assert_eq!(bytes.len(), 12 + 8 + 4 + 8 + 8);
+        assert_eq!(u32_at(&bytes, 8), Some(40));
+        assert!(check_container(&bytes, Path::new("x.glb"), Format::Glb).is_ok());
+        assert_eq!(json_text(&bytes), b"{}  ");
+        assert_eq!(&bytes[32..], &[1, 2, 3, 4, 5, 0, 0, 0]);
     }
 
     #[test]

@@ -15,10 +15,8 @@ use serde_json::json;
 use crate::atomic::write_atomically;
 use crate::error::{IoError, WriteProblem};
 
-const FLOAT: u32 = 5126;
-const UNSIGNED_INT: u32 = 5125;
-const ARRAY_BUFFER: u32 = 34962;
-const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+use super::container::encode_glb;
+use super::write::{f32_of, push_vec3, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_INT};
 
 /// A morph to write: base mesh, displacement targets, and the weights over time.
 #[derive(Debug, Clone, Copy)]
@@ -118,30 +116,6 @@ fn check_shapes(m: &MorphGlb<'_>) -> Result<(), String> {
     Ok(())
 }
 
-fn f32_of(x: f64, vertex: usize) -> Result<f32, WriteProblem> {
-    let y = x as f32;
-    if y.is_finite() {
-        Ok(y)
-    } else {
-        Err(WriteProblem::NonFinite { vertex, value: x })
-    }
-}
-
-/// Appends `points` as f32 VEC3 and returns (min, max).
-fn push_vec3(bin: &mut Vec<u8>, points: &[[f64; 3]]) -> Result<([f32; 3], [f32; 3]), WriteProblem> {
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for (vertex, p) in points.iter().enumerate() {
-        for k in 0..3 {
-            let x = f32_of(p[k], vertex)?;
-            lo[k] = lo[k].min(x);
-            hi[k] = hi[k].max(x);
-            bin.extend_from_slice(&x.to_le_bytes());
-        }
-    }
-    Ok((lo, hi))
-}
-
 /// The GLB bytes of `morph` (shapes assumed consistent: see [`write_morph_glb`]).
 ///
 /// # Errors
@@ -231,30 +205,7 @@ pub fn encode_morph_glb(m: &MorphGlb<'_>) -> Result<Vec<u8>, WriteProblem> {
         "bufferViews": views,
         "buffers": [{ "byteLength": bin.len() }],
     });
-    glb(doc.to_string().into_bytes(), bin)
-}
-
-/// GLB container: 12-byte header, JSON chunk (space-padded), BIN chunk (zero-padded).
-fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, WriteProblem> {
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let u = |x: usize| u32::try_from(x).map_err(|_| WriteProblem::TooLarge);
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&u(total)?.to_le_bytes());
-    out.extend_from_slice(&u(json.len())?.to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&u(bin.len())?.to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    Ok(out)
+    encode_glb(doc.to_string().into_bytes(), bin)
 }
 
 #[cfg(test)]

@@ -2,7 +2,6 @@
 
 use std::path::Path;
 
-use gltf::buffer::Data;
 use gltf::mesh::Mode;
 use gltf::{Gltf, Semantic};
 
@@ -151,8 +150,8 @@ fn instances(doc: &gltf::Document, path: &Path) -> Result<Vec<(usize, Matrix)>, 
     Ok(out)
 }
 
-fn collect(doc: &gltf::Document, buffers: &[Data], path: &Path) -> Result<Soup, IoError> {
-    let bytes: usize = buffers.iter().map(|b| b.0.len()).sum();
+fn collect(doc: &gltf::Document, buffers: &[Vec<u8>], path: &Path) -> Result<Soup, IoError> {
+    let bytes: usize = buffers.iter().map(Vec::len).sum();
     let mut soup = Soup {
         limit: (bytes / 12)
             .saturating_mul(INSTANCING_LIMIT)
@@ -213,7 +212,7 @@ fn add_primitive(
     prim: &gltf::Primitive<'_>,
     mesh: usize,
     world: &Matrix,
-    buffers: &[Data],
+    buffers: &[Vec<u8>],
     path: &Path,
 ) -> Result<Option<Mode>, IoError> {
     let p = prim.index();

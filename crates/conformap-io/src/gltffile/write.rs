@@ -10,10 +10,16 @@ use serde_json::{json, Value};
 
 use crate::error::WriteProblem;
 
-const FLOAT: u32 = 5126;
-const UNSIGNED_INT: u32 = 5125;
-const ARRAY_BUFFER: u32 = 34962;
-const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+use super::container::encode_glb;
+
+/// glTF component type `FLOAT`.
+pub(super) const FLOAT: u32 = 5126;
+/// glTF component type `UNSIGNED_INT`.
+pub(super) const UNSIGNED_INT: u32 = 5125;
+/// glTF buffer view target of vertex attributes.
+pub(super) const ARRAY_BUFFER: u32 = 34962;
+/// glTF buffer view target of indices.
+pub(super) const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 
 /// Encodes a `.glb` (`binary`) or a `.gltf` with an embedded base64 buffer. `uv`, if given,
 /// has one entry per position; faces index positions (checked by the caller).
@@ -28,21 +34,12 @@ pub(crate) fn encode_gltf(
     }
     let n = positions.len();
     let mut bin: Vec<u8> = Vec::with_capacity(n * 20 + faces.len() * 12);
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for (vertex, p) in positions.iter().enumerate() {
-        for k in 0..3 {
-            let x = to_f32(p[k], vertex)?;
-            lo[k] = lo[k].min(x);
-            hi[k] = hi[k].max(x);
-            bin.extend_from_slice(&x.to_le_bytes());
-        }
-    }
+    let (lo, hi) = push_vec3(&mut bin, positions)?;
     let pos_len = bin.len();
     if let Some(uv) = uv {
         for (vertex, t) in uv.iter().enumerate() {
-            bin.extend_from_slice(&to_f32(t[0], vertex)?.to_le_bytes());
-            bin.extend_from_slice(&to_f32(1.0 - t[1], vertex)?.to_le_bytes());
+            bin.extend_from_slice(&f32_of(t[0], vertex)?.to_le_bytes());
+            bin.extend_from_slice(&f32_of(1.0 - t[1], vertex)?.to_le_bytes());
         }
     }
     let uv_len = bin.len() - pos_len;
@@ -93,7 +90,7 @@ pub(crate) fn encode_gltf(
     });
     let text = doc.to_string();
     if binary {
-        glb(text.into_bytes(), bin)
+        encode_glb(text.into_bytes(), bin)
     } else {
         Ok(text.into_bytes())
     }
@@ -103,7 +100,9 @@ fn view(offset: usize, length: usize, target: u32) -> Value {
     json!({ "buffer": 0, "byteOffset": offset, "byteLength": length, "target": target })
 }
 
-fn to_f32(x: f64, vertex: usize) -> Result<f32, WriteProblem> {
+/// `x` rounded to f32; [`WriteProblem::NonFinite`] naming `vertex` (the row) if that is not
+/// finite.
+pub(super) fn f32_of(x: f64, vertex: usize) -> Result<f32, WriteProblem> {
     let y = x as f32;
     if y.is_finite() {
         Ok(y)
@@ -112,27 +111,22 @@ fn to_f32(x: f64, vertex: usize) -> Result<f32, WriteProblem> {
     }
 }
 
-/// GLB container: 12-byte header, JSON chunk (space-padded), BIN chunk (zero-padded).
-fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, WriteProblem> {
-    while json.len() % 4 != 0 {
-        json.push(b' ');
+/// Appends `points` as f32 VEC3 and returns (min, max).
+pub(super) fn push_vec3(
+    bin: &mut Vec<u8>,
+    points: &[[f64; 3]],
+) -> Result<([f32; 3], [f32; 3]), WriteProblem> {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for (vertex, p) in points.iter().enumerate() {
+        for k in 0..3 {
+            let x = f32_of(p[k], vertex)?;
+            lo[k] = lo[k].min(x);
+            hi[k] = hi[k].max(x);
+            bin.extend_from_slice(&x.to_le_bytes());
+        }
     }
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let u = |x: usize| u32::try_from(x).map_err(|_| WriteProblem::TooLarge);
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&u(total)?.to_le_bytes());
-    out.extend_from_slice(&u(json.len())?.to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&u(bin.len())?.to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    Ok(out)
+    Ok((lo, hi))
 }
 
 /// Standard base64 with padding (RFC 4648).

@@ -29,6 +29,8 @@ use std::collections::HashMap;
 
 use num_complex::Complex64;
 
+use conformap_operators::planar::polygon_area;
+
 use crate::Location;
 
 /// A key surface's loop matches an S1 loop only when the mean distance (in S1's disk)
@@ -95,14 +97,6 @@ pub fn crease_loops(positions: &[[f64; 3]], faces: &[[u32; 3]], angle_deg: f64) 
     loops
 }
 
-/// Signed area of a closed polygon.
-fn signed_area(z: &[Complex64]) -> f64 {
-    let n = z.len();
-    0.5 * (0..n)
-        .map(|i| (z[i].conj() * z[(i + 1) % n]).im)
-        .sum::<f64>()
-}
-
 /// Nearest point of segment `a b` to `p`: distance and fraction along the segment.
 fn nearest_on_segment(p: Complex64, a: Complex64, b: Complex64) -> (f64, f64) {
     let e = b - a;
@@ -133,7 +127,7 @@ fn nearest_on_polygon(p: Complex64, poly: &[Complex64]) -> (f64, usize, f64) {
 fn ccw(lp: &[u32], disk: &[Complex64]) -> Vec<u32> {
     let z: Vec<Complex64> = lp.iter().map(|&v| disk[v as usize]).collect();
     let mut out = lp.to_vec();
-    if signed_area(&z) < 0.0 {
+    if polygon_area(&z) < 0.0 {
         out[1..].reverse();
     }
     out

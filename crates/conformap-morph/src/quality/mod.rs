@@ -3,6 +3,8 @@
 
 use std::collections::HashMap;
 
+use conformap_operators::vec3::{cross, dot, norm, sub};
+
 use crate::Location;
 
 /// A face counts as degenerate when its area is below this fraction of the squared
@@ -15,26 +17,6 @@ pub const DEGENERATE_AREA_REL: f64 = 1e-14;
 /// shared faces are pleated like that, about 170 edges per face, while the skin has no
 /// such edge).
 pub const CREASE_ANGLE_DEG: f64 = 90.0;
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
 
 /// Twice the area vector of triangle `f` of `positions`.
 pub fn face_normal(positions: &[[f64; 3]], f: &[u32; 3]) -> [f64; 3] {

@@ -119,11 +119,3 @@ impl BoundaryEnergy<'_> {
         }
     }
 }
-
-/// Signed area of the closed polygon `h` (shoelace; positive counter-clockwise).
-pub(crate) fn polygon_area(h: &[Complex64]) -> f64 {
-    let n = h.len();
-    0.5 * (0..n)
-        .map(|k| (h[k].conj() * h[(k + 1) % n]).im)
-        .sum::<f64>()
-}

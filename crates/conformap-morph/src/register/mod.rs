@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use crate::MorphError;
 use anchor::Anchor;
-use boundary::polygon_area;
+use conformap_operators::planar::polygon_area;
 use search::unfold;
 use solve::{folded_by, Solver};
 use system::LandmarkSystem;

@@ -7,6 +7,7 @@ pub(crate) mod map;
 pub(crate) mod surface;
 
 use conformap_mesh::TriMesh;
+use conformap_operators::vec3;
 use rayon::prelude::*;
 
 use crate::param::{Domain, MapCoords};
@@ -78,15 +79,7 @@ impl TexMap {
             Self::Plane { center, scale } => {
                 ((p[0] - center[0]) * scale, (p[1] - center[1]) * scale)
             }
-            Self::Sphere { cells } => {
-                let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-                let q = if n > 0.0 {
-                    [p[0] / n, p[1] / n, p[2] / n]
-                } else {
-                    p
-                };
-                sphere_texcoords(q, cells)
-            }
+            Self::Sphere { cells } => sphere_texcoords(vec3::normalize(p), cells),
         }
     }
 }

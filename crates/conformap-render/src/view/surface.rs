@@ -5,7 +5,7 @@ use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
 use super::{clamp_barycentric, colorbar, FaceTex, TexMap};
-use crate::camera::{cross, dot, normalize, Camera};
+use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::faces::{distortions, face_field};
 use crate::image::Image;
@@ -13,6 +13,7 @@ use crate::options::RenderOptions;
 use crate::param::MapCoords;
 use crate::raster::{self, centroid, Barycentric};
 use crate::textures::texture;
+use conformap_operators::vec3::{cross, dot, normalize, sub};
 
 /// Share of the light that reaches every lit point regardless of its normal: 0.3 (keeps
 /// the texture readable on faces turned away from the light).
@@ -36,10 +37,7 @@ pub(crate) fn normals(mesh: &TriMesh) -> ([f64; 3], Vec<[f32; 3]>) {
     let mut sum = [0.0; 3];
     for t in mesh.faces() {
         let [a, b, c] = t.map(|v| p[v as usize]);
-        let n = cross(
-            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-        );
+        let n = cross(sub(b, a), sub(c, a));
         for v in t {
             let x = &mut acc[*v as usize];
             x[0] += n[0];

@@ -1,9 +1,12 @@
-//! What a disk solver reports besides the map.
+//! What a disk solver reports besides the map: the fields every method fills, and CCEM's
+//! own part ([`CcemReport`]).
 
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::ccem::{BoundaryReport, CcemStages, LineSearchReport, SchurReport};
+mod ccem;
+
+pub use ccem::{BoundaryReport, CcemReport, CcemStages, LineSearchReport, SchurReport, StepRecord};
 
 /// Wall-clock time per stage, milliseconds. Field names follow the report schema of
 /// `design.md` (`timings_ms`).
@@ -51,24 +54,10 @@ pub struct SolverReport {
     pub fallback_from: Option<String>,
     /// Per-stage timings.
     pub timings_ms: Timings,
-    /// Euclidean norm of the projected gradient of `E_C(θ)` (CCEM Eq. 4.1, with the
-    /// components that would push boundary gaps held at the floor further down removed;
-    /// the plain `‖∇_θ E_C‖` when no gap is held) at every iterate (CCEM; empty for other
-    /// methods), aligned with `energy_history`.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub gradient_norm_history: Vec<f64>,
-    /// What the line searches did (CCEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub line_search: Option<LineSearchReport>,
-    /// How the Schur complement was applied (CCEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub schur: Option<SchurReport>,
-    /// The state of the boundary of the returned map (CCEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub boundary: Option<BoundaryReport>,
-    /// Where a CCEM run spent its time (CCEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stages_ms: Option<CcemStages>,
+    /// What only CCEM reports (its fields appear in the JSON beside the common ones;
+    /// `None` for the other methods).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub ccem: Option<CcemReport>,
 }
 
 /// A disk map: one complex value per input vertex (`f = u + i v`), with its report.

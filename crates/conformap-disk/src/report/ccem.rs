@@ -1,7 +1,26 @@
-//! What a CCEM run reports besides the common [`crate::SolverReport`] fields: its stages,
-//! line searches, Schur-complement path and boundary.
+//! What a CCEM run reports besides the fields every disk solver fills: its gradients,
+//! stages, line searches, Schur-complement path and boundary.
 
 use serde::Serialize;
+
+/// CCEM's own part of the solver report.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct CcemReport {
+    /// Euclidean norm of the projected gradient of `E_C(θ)` (CCEM Eq. 4.1, with the
+    /// components that would push boundary gaps held at the floor further down removed;
+    /// the plain `‖∇_θ E_C‖` when no gap is held) at every iterate, aligned with
+    /// `energy_history`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub gradient_norm_history: Vec<f64>,
+    /// What the line searches did.
+    pub line_search: LineSearchReport,
+    /// How the Schur complement was applied.
+    pub schur: SchurReport,
+    /// The state of the boundary of the returned map.
+    pub boundary: BoundaryReport,
+    /// Where the run spent its time.
+    pub stages_ms: CcemStages,
+}
 
 /// Milliseconds per stage of a CCEM run (after the problem's assembly and factorization).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
