@@ -1,16 +1,15 @@
-//! `mobius`: the CLI's `mobius` command on arrays. The map and the region are given in
-//! memory, so the command's solve runs on them ([`MobiusArgs::solve_with`]) instead of
-//! reading `PARAM` and `--region` files; everything else (usage check, memory check, the
-//! report) is [`conformap_cli::pipeline::solve_and_report`]'s, as for `disk_map`.
+//! `mobius`: the `mobius` job on arrays. The map and the region are given in memory
+//! ([`MobiusJob::param_map`], [`MobiusJob::region_faces`]) instead of `PARAM` and
+//! `--region` files; everything else (usage check, memory check, the report) is
+//! [`conformap::run_in_memory`]'s, as for `disk_map`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use conformap_cli::commands::mobius::{Domain, MobiusArgs, Objective};
-use conformap_cli::commands::param::{region_face, MapFile};
-use conformap_cli::failure::Failure;
-use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved};
+use conformap::failure::Failure;
+use conformap::jobs::mobius::{Domain, MobiusJob, Objective};
+use conformap::jobs::param::{region_face, MapFile};
+use conformap::pipeline::{InputOptions, OutputOptions};
 use conformap_global::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
-use conformap_mesh::TriMesh;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
@@ -20,39 +19,6 @@ use crate::maps::{choice, report_dict, run};
 
 /// The path reports and errors give for a map passed as an array (as `metrics` does).
 pub const PARAM_PATH: &str = "<array>";
-
-/// `mobius` on a map and region in memory: the CLI's [`MobiusArgs`] with their solve fed
-/// from memory.
-struct InMemory {
-    args: MobiusArgs,
-    param: MapFile,
-    region: Option<Vec<usize>>,
-}
-
-impl MapCommand for InMemory {
-    fn name(&self) -> &'static str {
-        self.args.name()
-    }
-    fn work(&self) -> &'static str {
-        self.args.work()
-    }
-    fn input(&self) -> &InputArgs {
-        self.args.input()
-    }
-    fn output(&self) -> &OutputArgs {
-        self.args.output()
-    }
-    fn check_usage(&self) -> Result<(), Failure> {
-        self.args.check_usage()
-    }
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        self.args.peak_bytes(mesh)
-    }
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        self.args
-            .solve_with(input, &self.param, self.region.clone(), 0.0)
-    }
-}
 
 /// The faces of `region` (any integer sequence or array), each checked against `faces`
 /// with the CLI's message (`region[k]` standing for the file and line).
@@ -182,23 +148,17 @@ pub fn mobius<'py>(
     let region = region
         .map(|r| region_faces(r, input.mesh.num_faces()))
         .transpose()?;
-    let mut args = MobiusArgs {
-        input: InputArgs::new(MEMORY_PATH),
-        param: PathBuf::from(PARAM_PATH),
-        output: OutputArgs::new(MEMORY_PATH),
+    let mut job = MobiusJob::new(
+        InputOptions::new(MEMORY_PATH),
+        PARAM_PATH,
+        OutputOptions::new(MEMORY_PATH).with_strict(strict),
         domain,
-        objective: objective_value,
-        // stands for the faces passed in memory, for the command's usage check
-        region: region.as_ref().map(|_| Path::new("<region>").to_path_buf()),
-        max_area_scale,
-    };
-    args.output.strict = strict;
-    let cmd = InMemory {
-        args,
-        param,
-        region,
-    };
-    let (solved, report) = run(py, &cmd, &input, max_memory, strict)?;
+        objective_value,
+    );
+    job.max_area_scale = max_area_scale;
+    job.param_map = Some(param);
+    job.region_faces = region;
+    let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     let moved = &solved.flat.0[..n.min(solved.flat.0.len())];
     let out = match domain {
         Domain::Disk => {

@@ -26,13 +26,13 @@ use conformap_global::{
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
-use crate::commands::global::{map_solved, FormObjective, GlobalArgs};
 use crate::failure::Failure;
+use crate::jobs::global::{map_solved, FormObjective, GlobalJob};
 use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
 
 /// The flags `--topology-opt` does not combine with (exit 2).
-pub(crate) fn check_usage(args: &GlobalArgs) -> Result<(), Failure> {
+pub(crate) fn check_usage(args: &GlobalJob) -> Result<(), Failure> {
     let conflict = if args.objective != FormObjective::Uniform {
         Some("--objective (the loop needs the most uniform form)")
     } else if args.form.is_some() {
@@ -54,7 +54,7 @@ pub(crate) fn check_usage(args: &GlobalArgs) -> Result<(), Failure> {
 }
 
 /// The options `args` ask for.
-fn options(args: &GlobalArgs) -> TopologyOptOptions {
+fn options(args: &GlobalJob) -> TopologyOptOptions {
     let mut o = TopologyOptOptions::DEFAULT;
     let mut global = o.global.clone().with_root(args.root);
     global = global.with_conjugate(args.options(Vec::new()).conjugate);
@@ -73,7 +73,7 @@ fn options(args: &GlobalArgs) -> TopologyOptOptions {
 }
 
 /// Runs the loop and packs its best layout as `global` (or `sphere`) would.
-pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure> {
+pub(crate) fn solve(args: &GlobalJob, input: &Input) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let fail = |e: conformap_global::GlobalError| input.fail(e.into());
     let options = options(args);

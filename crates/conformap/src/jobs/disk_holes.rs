@@ -16,14 +16,14 @@ use conformap_disk::{koebe, KoebeOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
-use crate::commands::disk::DiskArgs;
 use crate::failure::Failure;
+use crate::jobs::disk::DiskJob;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
 
 /// Maps `input` (connected, genus 0, several boundary loops) onto the unit disk with
 /// circular holes.
-pub fn solve(args: &DiskArgs, input: &Input) -> Result<Solved, Failure> {
+pub fn solve(args: &DiskJob, input: &Input) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let loops = mesh.boundary_loops().len();
     let mut options = KoebeOptions::DEFAULT.with_outer(args.outer);

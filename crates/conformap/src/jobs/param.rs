@@ -11,7 +11,7 @@ use crate::failure::Failure;
 
 /// A map read by [`read_map_file`]: its positions and, when the file has them, its texture
 /// coordinates (one per vertex, or per face corner for a seamed map).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct MapFile {
     /// The file.
     pub path: PathBuf,
