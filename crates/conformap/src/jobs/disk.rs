@@ -12,6 +12,7 @@ use conformap_operators::PeakMemory;
 use serde_json::json;
 
 use crate::failure::Failure;
+use crate::jobs::disk_holes;
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
 
@@ -191,7 +192,8 @@ impl MapJob for DiskJob {
             )));
         }
         if has_holes(mesh) {
-            return super::disk_holes::solve(self, input);
+            let options = disk_holes::koebe_options(self.outer, self.max_iter, self.tol);
+            return disk_holes::solve(&options, input);
         }
         match self.method.library() {
             Some(method) => self.solve_disk(input, method),

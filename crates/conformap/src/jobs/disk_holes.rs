@@ -17,23 +17,31 @@ use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
-use crate::jobs::disk::DiskJob;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
 
-/// Maps `input` (connected, genus 0, several boundary loops) onto the unit disk with
-/// circular holes.
-pub fn solve(args: &DiskJob, input: &Input) -> Result<Solved, Failure> {
-    let mesh = &input.mesh;
-    let loops = mesh.boundary_loops().len();
-    let mut options = KoebeOptions::DEFAULT.with_outer(args.outer);
-    if let Some(n) = args.max_iter {
+/// The Koebe options of `disk`'s `outer`, `max_iter` (the sweeps) and `tol`.
+pub fn koebe_options(
+    outer: Option<usize>,
+    max_iter: Option<usize>,
+    tol: Option<f64>,
+) -> KoebeOptions {
+    let mut options = KoebeOptions::DEFAULT.with_outer(outer);
+    if let Some(n) = max_iter {
         options = options.with_max_sweeps(n);
     }
-    if let Some(t) = args.tol {
+    if let Some(t) = tol {
         options = options.with_tol(t);
     }
-    let result = koebe(mesh, &options).map_err(|e| input.fail(e.into()))?;
+    options
+}
+
+/// Maps `input` (connected, genus 0, several boundary loops) onto the unit disk with
+/// circular holes.
+pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
+    let mesh = &input.mesh;
+    let loops = mesh.boundary_loops().len();
+    let result = koebe(mesh, options).map_err(|e| input.fail(e.into()))?;
     let r = &result.report;
     let t = Instant::now();
     let metrics_options = MetricsOptions::DEFAULT.with_outer_loop(r.outer_loop);

@@ -27,57 +27,15 @@ use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
-use crate::jobs::global::{map_solved, FormObjective, GlobalJob};
+use crate::jobs::global_solved::map_solved;
 use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
 
-/// The flags `--topology-opt` does not combine with (exit 2).
-pub(crate) fn check_usage(args: &GlobalJob) -> Result<(), Failure> {
-    let conflict = if args.objective != FormObjective::Uniform {
-        Some("--objective (the loop needs the most uniform form)")
-    } else if args.form.is_some() {
-        Some("--form")
-    } else {
-        None
-    };
-    if let Some(flag) = conflict {
-        return Err(Failure::Usage(format!(
-            "--topology-opt does not combine with {flag}"
-        )));
-    }
-    match args.slit_length {
-        Some(f) if !(f > 0.0 && f < 1.0) => Err(Failure::Usage(format!(
-            "--slit-length {f}: must lie in (0, 1) (a fraction of the bounding-box diagonal)"
-        ))),
-        _ => Ok(()),
-    }
-}
-
-/// The options `args` ask for.
-fn options(args: &GlobalJob) -> TopologyOptOptions {
-    let mut o = TopologyOptOptions::DEFAULT;
-    let mut global = o.global.clone().with_root(args.root);
-    global = global.with_conjugate(args.options(Vec::new()).conjugate);
-    if let Some(s) = args.starts {
-        let search = global.search.with_starts(s);
-        global = global.with_search(search);
-    }
-    o = o.with_global(global);
-    if let Some(n) = args.max_slits {
-        o = o.with_max_slits(n);
-    }
-    if let Some(f) = args.slit_length {
-        o = o.with_slit_length(f);
-    }
-    o
-}
-
 /// Runs the loop and packs its best layout as `global` (or `sphere`) would.
-pub(crate) fn solve(args: &GlobalJob, input: &Input) -> Result<Solved, Failure> {
+pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let fail = |e: conformap_global::GlobalError| input.fail(e.into());
-    let options = options(args);
-    let r = topology_opt(mesh, &options).map_err(fail)?;
+    let r = topology_opt(mesh, options).map_err(fail)?;
     let best = &r.steps[r.best_step];
     let start = &r.steps[0];
     let (mut solved, returned) = match &r.best {
