@@ -1,7 +1,7 @@
 //! `disk_map` and `sphere_map`: the `disk` and `sphere` jobs on arrays, through
 //! [`run_in_memory`], with the GIL released for the solve.
 
-use conformap::jobs::disk::{DiskJob, Method, OrderingArg};
+use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
 use conformap::jobs::sphere::{SphereJob, SphereMobius};
 use conformap::pipeline::{run_in_memory, Input, InputOptions, MapJob, OutputOptions, Solved};
 use conformap::report::Report;
@@ -74,7 +74,7 @@ pub fn disk_map<'py>(
     .with_method(choice::<Method>("method", method)?)
     .with_max_iter(max_iter)
     .with_tol(tol);
-    args.ordering = choice::<OrderingArg>("ordering", ordering)?;
+    args.ordering = choice::<FactorOrder>("ordering", ordering)?;
     args.outer = outer;
     args.keep_folds = keep_folds;
     let input = mesh_input(v, f)?;

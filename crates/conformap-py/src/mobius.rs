@@ -6,10 +6,10 @@
 use std::path::PathBuf;
 
 use conformap::failure::Failure;
+use conformap::jobs::mobius::DEFAULT_MAX_AREA_SCALE;
 use conformap::jobs::mobius::{Domain, MobiusJob, Objective};
-use conformap::jobs::param::{region_face, MapFile};
+use conformap::jobs::param::{on_unit_sphere, region_face, MapFile, UNIT_SPHERE_TOL};
 use conformap::pipeline::{InputOptions, OutputOptions};
-use conformap_global::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
@@ -74,17 +74,13 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
         Domain::Sphere => flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
     };
     if domain == Domain::Sphere {
-        let off = positions.iter().position(|p| {
-            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-            let on_sphere = (r - 1.0).abs() <= MAP_RADIUS_TOL; // false for NaN
-            !on_sphere
-        });
+        let off = positions.iter().position(|p| !on_unit_sphere(p));
         if let Some(k) = off {
             let p = positions[k];
             return Err(to_py(Failure::BadInput(
                 format!(
                     "param row {k} ({}, {}, {}) is not on the unit sphere (radius tolerance \
-                     {MAP_RADIUS_TOL:e})",
+                     {UNIT_SPHERE_TOL:e})",
                     p[0], p[1], p[2]
                 ),
                 Some("pass the S of sphere_map (unit vectors, one per vertex)".to_string()),
@@ -108,7 +104,7 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
 /// region=range(100))`
 #[pyfunction]
 #[pyo3(signature = (v, f, param, domain = "disk", objective = "uniform", region = None, *,
-    max_area_scale = EMPHASIZE_MAX_AREA_SCALE, strict = false, max_memory = None))]
+    max_area_scale = DEFAULT_MAX_AREA_SCALE, strict = false, max_memory = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn mobius<'py>(
     py: Python<'py>,

@@ -2,7 +2,7 @@
 //! The clap arguments and their job; the job (crate `conformap`) does the work.
 
 use clap::Args;
-use conformap::jobs::disk::{DiskJob, Method, OrderingArg};
+use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
 
 use crate::args::{choice, InputArgs, OutputArgs};
 
@@ -38,8 +38,8 @@ pub struct DiskArgs {
     pub keep_folds: bool,
     /// Fill-reducing ordering of the factorization of the interior Laplacian (one boundary
     /// loop; the map is the same to rounding, only its cost changes)
-    #[arg(long, value_parser = choice::<OrderingArg>(), default_value_t = OrderingArg::Auto)]
-    pub ordering: OrderingArg,
+    #[arg(long, value_parser = choice::<FactorOrder>(), default_value_t = FactorOrder::Auto)]
+    pub ordering: FactorOrder,
 }
 
 impl DiskArgs {

@@ -12,6 +12,7 @@ use conformap_operators::PeakMemory;
 use serde_json::json;
 
 use crate::failure::Failure;
+use crate::jobs::converged::sphere_map_converged;
 use crate::jobs::disk_holes;
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
@@ -56,7 +57,7 @@ impl Method {
 crate::choice! {
     /// The fill-reducing ordering of the factorization of `L_II` (see
     /// `conformap_disk::FactorOrdering`).
-    pub enum OrderingArg {
+    pub enum FactorOrder {
         /// Nested dissection from 200,000 interior vertices, AMD below (default).
         Auto = "auto",
         /// Approximate minimum degree.
@@ -66,7 +67,7 @@ crate::choice! {
     }
 }
 
-impl OrderingArg {
+impl FactorOrder {
     fn library(self) -> FactorOrdering {
         match self {
             Self::Auto => FactorOrdering::Auto,
@@ -102,7 +103,7 @@ pub struct DiskJob {
     pub keep_folds: bool,
     /// Fill-reducing ordering of the factorization of the interior Laplacian (one boundary
     /// loop; the map is the same to rounding, only its cost changes)
-    pub ordering: OrderingArg,
+    pub ordering: FactorOrder,
 }
 
 impl DiskJob {
@@ -116,7 +117,7 @@ impl DiskJob {
             max_iter: None,
             tol: None,
             keep_folds: false,
-            ordering: OrderingArg::Auto,
+            ordering: FactorOrder::Auto,
         }
     }
 
@@ -326,7 +327,7 @@ impl DiskJob {
             // a direct method: one stage per sphere-map stage; the residual is Angenent's
             solver: SolverSection::new(
                 r.sphere.stages.len().saturating_sub(1),
-                r.sphere.residual <= conformap_global::SPHERE_SOLVE_RESIDUAL_TOL,
+                sphere_map_converged(&r.sphere),
                 r.sphere
                     .stages
                     .iter()

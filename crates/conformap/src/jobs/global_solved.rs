@@ -9,6 +9,7 @@ use conformap_metrics::{corner_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
+use crate::jobs::converged::global_map_converged;
 use crate::pipeline::{Solved, TexCoords};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
 
@@ -43,13 +44,19 @@ pub(crate) fn map_solved(
             "factorization".to_string(),
             json!({"dim": map.factor_dim, "nnz_factor": map.factor_nnz}),
         );
-        let solver = SolverSection::new(0, true, Vec::new(), map.bilinear_residual, &json!({}))
-            .with(
-                "residual_is",
-                "Riemann's bilinear relations of the period matrix (relative)",
-            )
-            .with("seam_residual", map.seam_residual)
-            .with("harmonic_residual", map.harmonic_residual);
+        let solver = SolverSection::new(
+            0,
+            global_map_converged(map),
+            Vec::new(),
+            map.bilinear_residual,
+            &json!({}),
+        )
+        .with(
+            "residual_is",
+            "Riemann's bilinear relations of the period matrix (relative)",
+        )
+        .with("seam_residual", map.seam_residual)
+        .with("harmonic_residual", map.harmonic_residual);
         let tm = &map.timings_ms;
         Ok(Solved {
             picture_domain: None,

@@ -27,6 +27,7 @@ use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
+use crate::jobs::converged::topology_opt_converged;
 use crate::jobs::global_solved::map_solved;
 use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
@@ -101,7 +102,14 @@ pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solve
 /// step 0 being the `start` (sphere or disk) map.
 fn step_history(r: &TopologyOpt, start: &str) -> SolverSection {
     let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
-    SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
+    SolverSection::new(
+        r.steps.len() - 1,
+        topology_opt_converged(r),
+        energies,
+        0.0,
+        &json!({}),
+    )
+    .with(
         "energy_history_is",
         format!("uniformity energy of each step (step 0: the {start} map)"),
     )

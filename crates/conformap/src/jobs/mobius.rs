@@ -7,14 +7,13 @@ use std::time::Instant;
 use conformap_global::{
     equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
     sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
-    MAP_RADIUS_TOL,
 };
 use conformap_mesh::TriMesh;
 use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
-use crate::jobs::param::{read_map_file, read_region, MapFile};
+use crate::jobs::param::{on_unit_sphere, read_map_file, read_region, MapFile};
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
 use crate::report::{ms_since, MetricsSection, ParamInfo, SolverSection, StageTimings};
 
@@ -330,9 +329,7 @@ impl MobiusJob {
         objective: &MobiusObjective,
         options: &MobiusOptions,
     ) -> Result<Moved, Failure> {
-        let on_sphere = param.positions.iter().all(|p| {
-            ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() <= MAP_RADIUS_TOL
-        });
+        let on_sphere = param.positions.iter().all(on_unit_sphere);
         let (points, from): (Vec<[f64; 3]>, &'static str) = match (&param.uv, on_sphere) {
             (_, true) => (param.positions.clone(), "sphere positions"),
             (Some(uv), false) => (

@@ -6,12 +6,11 @@ use std::time::Instant;
 
 use conformap_render::{
     angle_histogram, histogram_svg, render, ColorBy, MapCoords, RenderOptions, UvValues, View,
-    SPHERE_RADIUS_TOL,
 };
 use num_complex::Complex64;
 
 use crate::failure::Failure;
-use crate::jobs::param::{read_map_file, MapFile, PlanarMap};
+use crate::jobs::param::{on_unit_sphere, read_map_file, MapFile, PlanarMap};
 use crate::pipeline::pictures::render_failure;
 use crate::pipeline::{check_outputs, context, Outcome, Staged};
 use crate::report::ms_since;
@@ -207,9 +206,7 @@ impl Coords {
     /// The map in `file` for `domain`; `closed_genus0` says how `auto` reads texture
     /// coordinates.
     fn from_file(file: MapFile, domain: ParamDomain, closed_genus0: bool) -> Self {
-        let on_sphere = file.positions.iter().all(|p| {
-            ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() <= SPHERE_RADIUS_TOL
-        });
+        let on_sphere = file.positions.iter().all(on_unit_sphere);
         let sphere = match domain {
             ParamDomain::Plane => false,
             ParamDomain::Sphere => true,

@@ -5,12 +5,13 @@ use std::time::Instant;
 
 use conformap_global::{
     equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
-    MobiusOptions, SphereMetrics, SphereOptions, SPHERE_SOLVE_RESIDUAL_TOL,
+    MobiusOptions, SphereMetrics, SphereOptions,
 };
 use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
+use crate::jobs::converged::sphere_map_converged;
 use crate::pipeline::{Input, InputOptions, MapJob, OutputOptions, PictureDomain, Solved};
 use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
 
@@ -123,8 +124,7 @@ impl MapJob for SphereJob {
         }
         // a direct method: converged when Angenent's solve is accurate and (with a Möbius
         // normalization) its optimization converged
-        let converged =
-            s.residual <= SPHERE_SOLVE_RESIDUAL_TOL && mobius.as_ref().is_none_or(|m| m.converged);
+        let converged = sphere_map_converged(s) && mobius.as_ref().is_none_or(|m| m.converged);
         let solver = SolverSection::new(
             s.stages.len().saturating_sub(1),
             converged,
