@@ -183,7 +183,35 @@ impl MorphJob {
 fn run(args: &MorphJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let target = args.check_usage()?;
-    let mut outputs: Vec<(&str, &Path, bool)> = match &target {
+    check_morph_outputs(args, &target)?;
+    let t = Instant::now();
+    let surfaces = read_surfaces(args)?;
+    let read_ms = ms_since(t);
+    let solution = solve(args, &surfaces)?;
+
+    let t = Instant::now();
+    let mut staged = Staged::new();
+    stage_frames(&mut staged, &target, &solution)?;
+    let timings = StageTimings {
+        read: read_ms,
+        write: ms_since(t),
+        total: ms_since(t_all),
+        ..StageTimings::default()
+    };
+    let report = command_report(args, &surfaces, &solution, timings);
+    if let Some(path) = &args.report {
+        staged.json(path, &report)?;
+    }
+    staged.commit()?;
+    Ok(Outcome {
+        messages: morph_messages(args, &report, ms_since(t_all)),
+        ..Outcome::default()
+    })
+}
+
+/// Refuses outputs that would overwrite an input or land in a missing directory.
+fn check_morph_outputs(args: &MorphJob, target: &Target) -> Result<(), Failure> {
+    let mut outputs: Vec<(&str, &Path, bool)> = match target {
         Target::Glb(p) => vec![("-o", p.as_path(), true)],
         Target::Frames(ps) => ps.iter().map(|p| ("-o", p.as_path(), true)).collect(),
     };
@@ -196,37 +224,35 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         .chain(&args.landmarks)
         .map(PathBuf::as_path)
         .collect();
-    check_outputs(&outputs, &inputs)?;
+    check_outputs(&outputs, &inputs)
+}
 
-    let t = Instant::now();
+/// Reads every key surface with its landmarks.
+fn read_surfaces(args: &MorphJob) -> Result<Vec<Surface>, Failure> {
     let mut surfaces = Vec::with_capacity(args.surfaces.len());
     for (mesh_path, lm_path) in args.surfaces.iter().zip(&args.landmarks) {
         let input = read_input(mesh_path, false)?;
         let landmarks = read_landmarks(lm_path)?;
         surfaces.push(Surface::new(input.mesh, landmarks));
     }
-    let read_ms = ms_since(t);
-    let solution = solve(args, &surfaces)?;
-    let (m, times) = (&solution.morph, &solution.times);
+    Ok(surfaces)
+}
 
-    let t = Instant::now();
-    let mut staged = Staged::new();
-    match &target {
-        Target::Frames(paths) => staged.obj_frames(paths, m.faces(), |i| m.frame(times[i]))?,
-        Target::Glb(path) => stage_glb(&mut staged, path, m, times)?,
+/// Stages the frames (OBJ files or one GLB) of `solution`.
+fn stage_frames(
+    staged: &mut Staged,
+    target: &Target,
+    solution: &MorphSolution,
+) -> Result<(), Failure> {
+    let (m, times) = (&solution.morph, &solution.times);
+    match target {
+        Target::Frames(paths) => staged.obj_frames(paths, m.faces(), |i| m.frame(times[i])),
+        Target::Glb(path) => stage_glb(staged, path, m, times),
     }
-    let write_ms = ms_since(t);
-    let timings = StageTimings {
-        read: read_ms,
-        write: write_ms,
-        total: ms_since(t_all),
-        ..StageTimings::default()
-    };
-    let report = command_report(args, &surfaces, &solution, timings);
-    if let Some(path) = &args.report {
-        staged.json(path, &report)?;
-    }
-    staged.commit()?;
+}
+
+/// The registration notes of every key surface, then the summary line.
+fn morph_messages(args: &MorphJob, report: &MorphCommandReport, total_ms: f64) -> Vec<String> {
     let worst = report
         .morph
         .keys
@@ -237,11 +263,11 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         "{}: morph through {} surfaces, {} frames to {}; landmark error ≤ {:.2} % of the \
          diagonal; {:.0} ms",
         args.surfaces[0].display(),
-        surfaces.len(),
+        args.surfaces.len(),
         args.frames,
         args.output.display(),
         100.0 * worst,
-        ms_since(t_all)
+        total_ms
     );
     let mut messages: Vec<String> = report
         .morph
@@ -255,10 +281,7 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         })
         .collect();
     messages.push(summary);
-    Ok(Outcome {
-        messages,
-        ..Outcome::default()
-    })
+    messages
 }
 
 /// A morph computed, before anything is written.
