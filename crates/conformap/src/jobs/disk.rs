@@ -15,7 +15,9 @@ use crate::failure::Failure;
 use crate::jobs::converged::sphere_map_converged;
 use crate::jobs::disk_holes;
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, FactorizationSection, MetricsSection, Sections, SolverSection, StageTimings,
+};
 
 crate::choice! {
     /// The disk-map method (see `conformap_disk::DiskMethod`).
@@ -234,15 +236,14 @@ impl DiskJob {
             metrics.angle_distortion_deg.mean,
             metrics.flipped_faces,
         );
-        let mut sections = serde_json::Map::new();
-        sections.insert(
-            "factorization".into(),
-            json!({
-                "ordering": stats.ordering,
-                "interior_vertices": stats.n,
-                "nnz_factor": stats.nnz_factor,
+        let sections = Sections {
+            factorization: Some(FactorizationSection::Interior {
+                interior_vertices: stats.n,
+                nnz_factor: stats.nnz_factor,
+                ordering: stats.ordering,
             }),
-        );
+            ..Sections::default()
+        };
         Ok(Solved {
             picture_domain: None,
             method: s.method.clone(),
@@ -343,7 +344,7 @@ impl DiskJob {
             )
             .with("unfolded", unfolded),
             param: None,
-            sections: serde_json::Map::new(),
+            sections: Sections::default(),
             metrics: MetricsSection::planar(metrics),
             timings: StageTimings {
                 assemble: st.assemble,

@@ -14,11 +14,12 @@ use std::time::Instant;
 
 use conformap_disk::{koebe, KoebeOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use serde_json::json;
 
 use crate::failure::Failure;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, CircleDomainSection, MetricsSection, Sections, SolverSection, StageTimings,
+};
 
 /// The Koebe options of `disk`'s `outer`, `max_iter` (the sweeps) and `tol`.
 pub fn koebe_options(
@@ -71,18 +72,17 @@ pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
             .modulus
             .map_or(String::new(), |m| format!(", modulus ln(R/r) = {m:.6}")),
     );
-    let mut sections = serde_json::Map::new();
-    sections.insert(
-        "circle_domain".into(),
-        json!({
-            "outer_loop": r.outer_loop,
-            "reference_hole": result.reference_hole,
-            "normalization": "outer loop on the unit circle with its first vertex at angle 0; \
-                              the reference hole (lowest loop index) centred at 0",
-            "modulus": result.modulus,
-            "circles": result.circles,
+    let sections = Sections {
+        circle_domain: Some(CircleDomainSection {
+            circles: result.circles.clone(),
+            modulus: result.modulus,
+            normalization: "outer loop on the unit circle with its first vertex at angle 0; \
+                            the reference hole (lowest loop index) centred at 0",
+            outer_loop: r.outer_loop,
+            reference_hole: result.reference_hole,
         }),
-    );
+        ..Sections::default()
+    };
     let tm = &r.timings_ms;
     Ok(Solved {
         picture_domain: None,

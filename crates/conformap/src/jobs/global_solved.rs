@@ -11,7 +11,7 @@ use serde_json::json;
 use crate::failure::Failure;
 use crate::jobs::converged::global_map_converged;
 use crate::pipeline::{Solved, TexCoords};
-use crate::report::{MetricsSection, SolverSection, StageTimings};
+use crate::report::{FactorizationSection, MetricsSection, Sections, SolverSection, StageTimings};
 
 /// What `global` returns for the map `map` of `mesh` (the input, whose faces the layout's
 /// corners follow) and its seamed layout.
@@ -38,12 +38,14 @@ pub(crate) fn map_solved(
             .with("folds_at_zeros", folds_at_zeros)
             .with("folds_outside_zeros", folds_outside_zeros)
             .with("conformal_factor_range", [cf_min, cf_max]);
-        let mut sections = serde_json::Map::new();
-        sections.insert("global".to_string(), global_section(map, &seamed));
-        sections.insert(
-            "factorization".to_string(),
-            json!({"dim": map.factor_dim, "nnz_factor": map.factor_nnz}),
-        );
+        let sections = Sections {
+            factorization: Some(FactorizationSection::Forms {
+                dim: map.factor_dim,
+                nnz_factor: map.factor_nnz,
+            }),
+            global: Some(global_section(map, &seamed)),
+            ..Sections::default()
+        };
         let solver = SolverSection::new(
             0,
             global_map_converged(map),

@@ -59,9 +59,7 @@ pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solve
         .iter()
         .flat_map(|s| s.added.iter().map(|a| &a.vertices))
         .collect();
-    solved.sections.insert(
-        "topology_opt".to_string(),
-        json!({
+    solved.sections.topology_opt = Some(json!({
             "returned": returned,
             "returned_is": "sphere: the starting uniform-Möbius sphere map (no slit paid); \
                             disk: the starting uniform-Möbius disk map (no slit paid); \
@@ -79,8 +77,7 @@ pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solve
             "stop": r.stop,
             "steps": r.steps,
             "total_ms": r.total_ms,
-        }),
-    );
+    }));
     solved.method = format!("topology-opt+{}", solved.method);
     solved.summary = format!(
         "topological optimization: {} step(s), best step {} with {} slit(s) (energy {:.3e}, \
@@ -144,7 +141,7 @@ fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<
         flat: (points.to_vec(), None),
         solver,
         param: None,
-        sections: serde_json::Map::new(),
+        sections: crate::report::Sections::default(),
         metrics: MetricsSection::sphere(m),
         timings: StageTimings {
             metrics: metrics_ms,
@@ -186,7 +183,7 @@ fn disk_solved(
         flat: (planar_points(map), None),
         solver,
         param: None,
-        sections: serde_json::Map::new(),
+        sections: crate::report::Sections::default(),
         metrics,
         timings: StageTimings {
             metrics: metrics_ms,

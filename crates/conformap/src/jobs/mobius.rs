@@ -271,7 +271,7 @@ impl MobiusJob {
                 path: self.param.display().to_string(),
                 map_from: moved.from,
             }),
-            sections: serde_json::Map::new(),
+            sections: crate::report::Sections::default(),
             metrics: moved.metrics,
             timings: StageTimings {
                 read: read_ms,

@@ -154,7 +154,7 @@ impl MapJob for SphereJob {
             flat: (points, None),
             solver,
             param: None,
-            sections: serde_json::Map::new(),
+            sections: crate::report::Sections::default(),
             metrics,
             timings: StageTimings {
                 assemble: s.timings_ms.assemble,

@@ -20,7 +20,6 @@ use std::path::Path;
 use std::time::Instant;
 
 use conformap_mesh::TriMesh;
-use serde_json::{Map, Value};
 
 pub use input::{read_input, repair_input, Input};
 pub use memory::MemoryCheck;
@@ -30,7 +29,7 @@ pub use pictures::PictureDomain;
 
 use crate::failure::Failure;
 use crate::report::{
-    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, SolverSection,
+    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, Sections, SolverSection,
     StageTimings,
 };
 
@@ -87,7 +86,7 @@ pub struct Solved {
     /// The report's `param` object, for commands that read a map.
     pub param: Option<ParamInfo>,
     /// Top-level report sections of the command (`factorization`, `circle_domain`).
-    pub sections: Map<String, Value>,
+    pub sections: Sections,
     /// The report's `metrics` object.
     pub metrics: MetricsSection,
     /// Timings of the solve: `read` holds the reading of other inputs (a map file), which
