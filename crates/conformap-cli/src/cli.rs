@@ -1,14 +1,15 @@
-//! The command line: the subcommands and their dispatch.
+//! The command line: the subcommands, their jobs and their dispatch.
+
+use std::ffi::OsString;
 
 use clap::{Parser, Subcommand};
+use conformap::{BatchJob, BatchTemplate, Choice, Failure, MapJob, Outcome};
 
 use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
 use crate::commands::{
     global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs,
 };
-use crate::failure::Failure;
-use crate::pipeline::{run_map, Outcome};
 
 /// Conformal (angle-preserving) parameterization of triangle meshes.
 #[derive(Debug, Parser)]
@@ -49,21 +50,56 @@ pub enum Command {
 }
 
 impl Command {
-    /// Runs the subcommand.
+    /// Runs the subcommand's job.
     ///
     /// # Errors
-    /// The command's [`Failure`], which says the exit code; nothing was written.
+    /// The job's [`Failure`], which says the exit code; nothing was written.
     pub fn run(&self) -> Result<Outcome, Failure> {
         match self {
-            Self::Info(args) => crate::commands::info::run(args),
-            Self::Metrics(args) => crate::commands::metrics::run(args),
-            Self::Disk(args) => run_map(args),
-            Self::Sphere(args) => run_map(args),
-            Self::Mobius(args) => run_map(args),
-            Self::Global(args) => run_map(args),
-            Self::Render(args) => crate::commands::render::run(args),
-            Self::Batch(args) => crate::commands::batch::run(args),
-            Self::Morph(args) => crate::commands::morph::run(args),
+            Self::Info(args) => args.to_job().run(),
+            Self::Metrics(args) => args.to_job().run(),
+            Self::Disk(args) => args.to_job().run(),
+            Self::Sphere(args) => args.to_job().run(),
+            Self::Mobius(args) => args.to_job().run(),
+            Self::Global(args) => args.to_job().run(),
+            Self::Render(args) => args.to_job().run(),
+            Self::Batch(args) => conformap::batch::run(&batch_job(args)?),
+            Self::Morph(args) => args.to_job().run(),
         }
     }
+}
+
+/// The job of `conformap batch`: the options after `--` parsed as the command's own (so
+/// a batch input runs exactly as that command would).
+///
+/// # Errors
+/// Usage: options that do not fit the command.
+pub fn batch_job(args: &BatchArgs) -> Result<BatchJob, Failure> {
+    let name = args.command.name();
+    let mut argv: Vec<OsString> = vec!["conformap".into(), name.into(), "MESH".into()];
+    argv.extend(["-o".into(), "OUT".into()]);
+    argv.extend(args.options.iter().map(Into::into));
+    let cli = Cli::try_parse_from(&argv).map_err(|e| {
+        Failure::Usage(format!(
+            "the options after -- do not fit `conformap {name}`: {}",
+            e.to_string()
+                .lines()
+                .next()
+                .unwrap_or_default()
+                .trim_start_matches("error: ")
+        ))
+    })?;
+    let template = match &cli.command {
+        Command::Disk(a) => BatchTemplate::Disk(a.to_job()),
+        Command::Sphere(a) => BatchTemplate::Sphere(a.to_job()),
+        Command::Global(a) => BatchTemplate::Global(a.to_job()),
+        _ => return Err(Failure::Usage(format!("`{name}` cannot run in a batch"))),
+    };
+    let mut job = BatchJob::new(template, &args.out_dir, args.inputs.clone()).with_jobs(args.jobs);
+    job.skip_existing = args.skip_existing;
+    job.report = args.report.clone();
+    job.ext = args.ext.clone();
+    job.png = args.png;
+    job.max_memory = args.max_memory;
+    Ok(job)
 }

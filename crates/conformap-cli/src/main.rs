@@ -8,8 +8,11 @@
 use std::io::Write;
 use std::process::ExitCode;
 
+use std::sync::Arc;
+
 use clap::Parser;
-use conformap_cli::pipeline::context::{Progress, ProgressMode, RunContext};
+use conformap::pipeline::context::RunContext;
+use conformap_cli::progress::{BarWatcher, Progress, ProgressMode};
 use conformap_cli::{Cli, Command};
 
 fn main() -> ExitCode {
@@ -21,12 +24,19 @@ fn main() -> ExitCode {
             let mut sink = |line: &str| {
                 let _ = writeln!(std::io::stdout().lock(), "{line}");
             };
-            conformap_cli::commands::batch::run_streaming(args, mode, &mut sink)
+            conformap_cli::cli::batch_job(args).and_then(|job| {
+                let progress = Progress::bar(mode, 0);
+                let context = RunContext {
+                    watcher: Some(Arc::new(BarWatcher(progress.bar_handle().clone()))),
+                    budget: None,
+                };
+                context.scope(|| conformap::batch::run_streaming(&job, &mut sink))
+            })
         }
         command => {
             let progress = Progress::spinner(mode);
             let context = RunContext {
-                progress: Some(progress.bar_handle().clone()),
+                watcher: Some(Arc::new(BarWatcher(progress.bar_handle().clone()))),
                 budget: None,
             };
             context.scope(|| command.run())

@@ -3,8 +3,8 @@
 //! nothing when the array is already float64 / int64 and C-contiguous); results as new
 //! float64 arrays.
 
-use conformap_cli::failure::{mesh_hint, Failure};
-use conformap_cli::pipeline::Input;
+use conformap::failure::{mesh_hint, Failure};
+use conformap::pipeline::Input;
 use conformap_io::{Format, SourceInfo};
 use conformap_mesh::TriMesh;
 use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};

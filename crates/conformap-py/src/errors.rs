@@ -3,7 +3,7 @@
 //! `RuntimeError`). The message is the CLI's `error:` line, followed by its `hint:` line
 //! when it has one.
 
-use conformap_cli::failure::Failure;
+use conformap::failure::Failure;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 

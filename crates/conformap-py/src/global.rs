@@ -1,17 +1,14 @@
-//! `global_map`: the CLI's `global` command on arrays. The region is given in memory, so
-//! the command's solve runs on it ([`GlobalArgs::solve_with_region`]) instead of reading a
-//! `--region` file; everything else is [`conformap_cli::pipeline::solve_and_report`]'s.
+//! `global_map`: the `global` job on arrays. The region is given in memory
+//! ([`GlobalJob::region_faces`]) instead of a `--region` file; everything else is
+//! [`conformap::run_in_memory`]'s.
 //!
 //! The seamed layout comes back as libigl / trimesh keep seamed texture coordinates: `uv`
 //! `(k, 2)`, one row per corner class (a vertex, split where a seam passes through it),
 //! and `F_uv` `(m, 3)`, per face the row of each corner.
 
-use std::path::PathBuf;
-
-use conformap_cli::commands::global::{Conjugate, FormObjective, GlobalArgs};
-use conformap_cli::failure::Failure;
-use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved, TexCoords};
-use conformap_mesh::TriMesh;
+use conformap::failure::Failure;
+use conformap::jobs::global::{Conjugate, FormObjective, GlobalJob};
+use conformap::pipeline::{InputOptions, OutputOptions, TexCoords};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
@@ -19,36 +16,6 @@ use crate::arrays::{faces_array, mesh_input, to_array, MEMORY_PATH};
 use crate::errors::{bad_input, to_py, usage};
 use crate::maps::{choice, report_dict, run};
 use crate::mobius::region_faces;
-
-/// `global` with its region in memory.
-struct InMemory {
-    args: GlobalArgs,
-    region: Vec<usize>,
-}
-
-impl MapCommand for InMemory {
-    fn name(&self) -> &'static str {
-        self.args.name()
-    }
-    fn work(&self) -> &'static str {
-        self.args.work()
-    }
-    fn input(&self) -> &InputArgs {
-        self.args.input()
-    }
-    fn output(&self) -> &OutputArgs {
-        self.args.output()
-    }
-    fn check_usage(&self) -> Result<(), Failure> {
-        self.args.check_usage()
-    }
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        self.args.peak_bytes(mesh)
-    }
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        self.args.solve_with_region(input, self.region.clone())
-    }
-}
 
 /// Vertex indices from a Python sequence of integers; `name` names it in errors.
 fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
@@ -127,28 +94,19 @@ pub fn global_map<'py>(
     let region = region
         .map(|r| region_faces(r, input.mesh.num_faces()))
         .transpose()?;
-    let mut args = GlobalArgs {
-        input: InputArgs::new(MEMORY_PATH),
-        output: OutputArgs::new(MEMORY_PATH),
-        form,
-        conjugate,
-        objective: objective_value,
-        // stands for the faces passed in memory, for the command's usage check
-        region: region.as_ref().map(|_| PathBuf::from("<region>")),
-        zeros,
-        starts,
-        root,
-        // topological optimization is the CLI's `--topology-opt`; not bound here yet
-        topology_opt: false,
-        max_slits: None,
-        slit_length: None,
-    };
-    args.output.strict = strict;
-    let cmd = InMemory {
-        args,
-        region: region.unwrap_or_default(),
-    };
-    let (solved, report) = run(py, &cmd, &input, max_memory, strict)?;
+    // topological optimization (`--topology-opt`) is not bound here yet
+    let mut job = GlobalJob::new(
+        InputOptions::new(MEMORY_PATH),
+        OutputOptions::new(MEMORY_PATH).with_strict(strict),
+    )
+    .with_objective(objective_value);
+    job.form = form;
+    job.conjugate = conjugate;
+    job.zeros = zeros;
+    job.starts = starts;
+    job.root = root;
+    job.region_faces = region;
+    let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     let uv: Vec<[f64; 2]> = solved.flat.0.iter().map(|p| [p[0], p[1]]).collect();
     let (laid_out, tex_faces) = match &solved.uv {
         TexCoords::PerCorner(c) => (&input.mesh, &c.faces),

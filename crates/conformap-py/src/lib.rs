@@ -1,9 +1,9 @@
 //! `conformap` for Python: the conformap command pipeline on numpy arrays (pyo3 + numpy,
 //! an abi3 wheel built by maturin).
 //!
-//! Every map function runs the CLI's own command ([`conformap_cli::commands`]) through
-//! [`conformap_cli::pipeline::solve_and_report`] on an in-memory mesh, so its report is the
-//! dict of the CLI's `--report` JSON, built by the same code. The GIL is released for all
+//! Every map function builds the job of crate `conformap` the CLI runs
+//! ([`conformap::jobs`]) and runs it through [`conformap::run_in_memory`] on an in-memory
+//! mesh, so its report is the dict of the CLI's `--report` JSON, built by the same code. The GIL is released for all
 //! computation.
 //!
 //! # Modules
@@ -27,8 +27,8 @@ pub mod morph;
 use pyo3::prelude::*;
 
 /// The Python module `conformap`.
-#[pymodule]
-fn conformap(m: &Bound<'_, PyModule>) -> PyResult<()> {
+#[pymodule(name = "conformap")]
+fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ConformapError", py.get_type::<errors::ConformapError>())?;

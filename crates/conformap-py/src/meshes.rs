@@ -1,10 +1,10 @@
 //! `info`, `metrics`, `read_mesh`, `write_mesh`: the CLI's `info --json` and
 //! `metrics --json` dicts on arrays, and conformap-io's readers and writers.
 
-use conformap_cli::commands::info::{available_repairs, describe};
-use conformap_cli::commands::metrics::metrics_report;
-use conformap_cli::commands::param::PlanarMap;
-use conformap_cli::failure::Failure;
+use conformap::failure::Failure;
+use conformap::jobs::info::{available_repairs, describe};
+use conformap::jobs::metrics::metrics_report;
+use conformap::jobs::param::PlanarMap;
 use num_complex::Complex64;
 use numpy::PyArray2;
 use pyo3::prelude::*;

@@ -1,16 +1,15 @@
-//! `mobius`: the CLI's `mobius` command on arrays. The map and the region are given in
-//! memory, so the command's solve runs on them ([`MobiusArgs::solve_with`]) instead of
-//! reading `PARAM` and `--region` files; everything else (usage check, memory check, the
-//! report) is [`conformap_cli::pipeline::solve_and_report`]'s, as for `disk_map`.
+//! `mobius`: the `mobius` job on arrays. The map and the region are given in memory
+//! ([`MobiusJob::param_map`], [`MobiusJob::region_faces`]) instead of `PARAM` and
+//! `--region` files; everything else (usage check, memory check, the report) is
+//! [`conformap::run_in_memory`]'s, as for `disk_map`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use conformap_cli::commands::mobius::{Domain, MobiusArgs, Objective};
-use conformap_cli::commands::param::{region_face, MapFile};
-use conformap_cli::failure::Failure;
-use conformap_cli::pipeline::{Input, InputArgs, MapCommand, OutputArgs, Solved};
-use conformap_mesh::TriMesh;
-use conformap_sphere::{EMPHASIZE_MAX_AREA_SCALE, MAP_RADIUS_TOL};
+use conformap::failure::Failure;
+use conformap::jobs::mobius::DEFAULT_MAX_AREA_SCALE;
+use conformap::jobs::mobius::{Domain, MobiusJob, Objective};
+use conformap::jobs::param::{on_unit_sphere, region_face, MapFile, UNIT_SPHERE_TOL};
+use conformap::pipeline::{InputOptions, OutputOptions};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
@@ -20,39 +19,6 @@ use crate::maps::{choice, report_dict, run};
 
 /// The path reports and errors give for a map passed as an array (as `metrics` does).
 pub const PARAM_PATH: &str = "<array>";
-
-/// `mobius` on a map and region in memory: the CLI's [`MobiusArgs`] with their solve fed
-/// from memory.
-struct InMemory {
-    args: MobiusArgs,
-    param: MapFile,
-    region: Option<Vec<usize>>,
-}
-
-impl MapCommand for InMemory {
-    fn name(&self) -> &'static str {
-        self.args.name()
-    }
-    fn work(&self) -> &'static str {
-        self.args.work()
-    }
-    fn input(&self) -> &InputArgs {
-        self.args.input()
-    }
-    fn output(&self) -> &OutputArgs {
-        self.args.output()
-    }
-    fn check_usage(&self) -> Result<(), Failure> {
-        self.args.check_usage()
-    }
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        self.args.peak_bytes(mesh)
-    }
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        self.args
-            .solve_with(input, &self.param, self.region.clone(), 0.0)
-    }
-}
 
 /// The faces of `region` (any integer sequence or array), each checked against `faces`
 /// with the CLI's message (`region[k]` standing for the file and line).
@@ -108,17 +74,13 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
         Domain::Sphere => flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
     };
     if domain == Domain::Sphere {
-        let off = positions.iter().position(|p| {
-            let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-            let on_sphere = (r - 1.0).abs() <= MAP_RADIUS_TOL; // false for NaN
-            !on_sphere
-        });
+        let off = positions.iter().position(|p| !on_unit_sphere(p));
         if let Some(k) = off {
             let p = positions[k];
             return Err(to_py(Failure::BadInput(
                 format!(
                     "param row {k} ({}, {}, {}) is not on the unit sphere (radius tolerance \
-                     {MAP_RADIUS_TOL:e})",
+                     {UNIT_SPHERE_TOL:e})",
                     p[0], p[1], p[2]
                 ),
                 Some("pass the S of sphere_map (unit vectors, one per vertex)".to_string()),
@@ -142,7 +104,7 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
 /// region=range(100))`
 #[pyfunction]
 #[pyo3(signature = (v, f, param, domain = "disk", objective = "uniform", region = None, *,
-    max_area_scale = EMPHASIZE_MAX_AREA_SCALE, strict = false, max_memory = None))]
+    max_area_scale = DEFAULT_MAX_AREA_SCALE, strict = false, max_memory = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn mobius<'py>(
     py: Python<'py>,
@@ -182,23 +144,17 @@ pub fn mobius<'py>(
     let region = region
         .map(|r| region_faces(r, input.mesh.num_faces()))
         .transpose()?;
-    let mut args = MobiusArgs {
-        input: InputArgs::new(MEMORY_PATH),
-        param: PathBuf::from(PARAM_PATH),
-        output: OutputArgs::new(MEMORY_PATH),
+    let mut job = MobiusJob::new(
+        InputOptions::new(MEMORY_PATH),
+        PARAM_PATH,
+        OutputOptions::new(MEMORY_PATH).with_strict(strict),
         domain,
-        objective: objective_value,
-        // stands for the faces passed in memory, for the command's usage check
-        region: region.as_ref().map(|_| Path::new("<region>").to_path_buf()),
-        max_area_scale,
-    };
-    args.output.strict = strict;
-    let cmd = InMemory {
-        args,
-        param,
-        region,
-    };
-    let (solved, report) = run(py, &cmd, &input, max_memory, strict)?;
+        objective_value,
+    );
+    job.max_area_scale = max_area_scale;
+    job.param_map = Some(param);
+    job.region_faces = region;
+    let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     let moved = &solved.flat.0[..n.min(solved.flat.0.len())];
     let out = match domain {
         Domain::Disk => {

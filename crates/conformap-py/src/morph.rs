@@ -1,5 +1,5 @@
 //! `morph`: the CLI's `morph` command on arrays, through the CLI's own pieces
-//! ([`MorphArgs::check_counts`], [`conformap_cli::commands::morph::solve`] over
+//! ([`MorphJob::check_counts`], [`conformap::jobs::morph::solve`] over
 //! conformap-morph's public API, [`command_report`]), so errors and the report are the
 //! CLI's. Surfaces are named `<surfaces[k]>` and landmark lists `<landmarks[k]>` where the
 //! CLI names files.
@@ -7,9 +7,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use conformap_cli::commands::morph::{command_report, solve, MorphArgs};
-use conformap_cli::failure::Failure;
-use conformap_cli::report::StageTimings;
+use conformap::failure::Failure;
+use conformap::jobs::morph::{command_report, solve, MorphJob};
+use conformap::report::StageTimings;
 use conformap_morph::{Landmarks, Surface};
 use numpy::{PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
@@ -104,15 +104,14 @@ pub fn morph<'py>(
         .try_iter()?
         .collect::<PyResult<_>>()
         .map_err(|_| bad_input("landmarks must be a sequence of landmark lists"))?;
-    let args = MorphArgs {
-        surfaces: (0..surfaces.len()).map(surface_name).collect(),
-        landmarks: (0..lists.len()).map(landmarks_name).collect(),
+    let mut args = MorphJob::new(
+        (0..surfaces.len()).map(surface_name).collect(),
+        (0..lists.len()).map(landmarks_name).collect(),
         frames,
-        output: PathBuf::new(),
-        lambda: lambda_,
-        hard,
-        report: None,
-    };
+        PathBuf::new(),
+    );
+    args.lambda = lambda_;
+    args.hard = hard;
     args.check_counts().map_err(to_py)?;
     let mut keys = Vec::with_capacity(surfaces.len());
     for (k, (pair, lms)) in surfaces.iter().zip(&lists).enumerate() {

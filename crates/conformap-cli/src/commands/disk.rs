@@ -1,81 +1,10 @@
-//! `conformap disk MESH -o OUT ...`: conformal map onto the unit disk (one boundary loop),
-//! or onto the disk with circular holes (several loops, [`super::disk_holes`]).
+//! `conformap disk`: conformal map onto the unit disk (or the disk with circular holes).
+//! The clap arguments and their job; the job (crate `conformap`) does the work.
 
-use std::time::Instant;
+use clap::Args;
+use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
 
-use clap::{Args, ValueEnum};
-use conformap_disk::{koebe_peak_bytes, unfold_disk_map, ProblemOptions};
-use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
-use conformap_mesh::{Topology, TriMesh};
-use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use conformap_operators::Ordering;
-use conformap_operators::PeakMemory;
-use conformap_sphere::{double_cover_disk_map, SphereOptions};
-use serde_json::json;
-
-use crate::failure::Failure;
-use crate::pipeline::{disk_uv, planar_points, Input, InputArgs, MapCommand, OutputArgs, Solved};
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
-
-/// The disk-map method (see `conformap_disk::DiskMethod`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Method {
-    /// CCEM with BFGS (Kuo et al. 2021, Algorithm 4.2), started from the harmonic measure
-    /// of the boundary (Möbius-aligned) and preconditioned by the exact Hessian there: the
-    /// lowest conformal energy, converged, never folded (default).
-    #[value(name = "ccem-qn")]
-    CcemQn,
-    /// CCEM steepest descent with the quadratic step (Algorithm 4.1).
-    Ccem,
-    /// CEM (Yueh et al. 2017): Angenent initial map and 20 boundary iterations.
-    Cem,
-    /// Harmonic map to an arc-length circle (baseline; no boundary optimization).
-    Harmonic,
-    /// Through the symmetric double cover and its sphere map (Jin et al. 2004, §3.1): an
-    /// independent route to the disk map, with no boundary iteration.
-    #[value(name = "double-cover")]
-    DoubleCover,
-}
-
-impl Method {
-    /// The library's method (`None` for the double cover, which lives in conformap-sphere).
-    fn library(self) -> Option<DiskMethod> {
-        match self {
-            Self::CcemQn => Some(DiskMethod::CcemQn),
-            Self::Ccem => Some(DiskMethod::Ccem),
-            Self::Cem => Some(DiskMethod::Cem),
-            Self::Harmonic => Some(DiskMethod::Harmonic),
-            Self::DoubleCover => None,
-        }
-    }
-
-    /// The name on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        self.library().map_or("double-cover", DiskMethod::name)
-    }
-}
-
-/// The fill-reducing ordering of the factorization of `L_II` (see
-/// `conformap_operators::Ordering`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum OrderingArg {
-    /// Nested dissection from 200,000 interior vertices, AMD below (default).
-    Auto,
-    /// Approximate minimum degree.
-    Amd,
-    /// Nested dissection (breadth-first level separators, AMD on small pieces).
-    Nd,
-}
-
-impl OrderingArg {
-    fn library(self) -> Ordering {
-        match self {
-            Self::Auto => Ordering::Auto,
-            Self::Amd => Ordering::Amd,
-            Self::Nd => Ordering::NestedDissection,
-        }
-    }
-}
+use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap disk`.
 #[derive(Debug, Clone, Args)]
@@ -88,7 +17,7 @@ pub struct DiskArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Method.
-    #[arg(long, value_enum, default_value_t = Method::CcemQn)]
+    #[arg(long, value_parser = choice::<Method>(), default_value_t = Method::CcemQn)]
     pub method: Method,
     /// With several boundary loops: the loop (0-based, as `conformap info` lists them) mapped
     /// onto the unit circle. Default: the longest.
@@ -109,239 +38,20 @@ pub struct DiskArgs {
     pub keep_folds: bool,
     /// Fill-reducing ordering of the factorization of the interior Laplacian (one boundary
     /// loop; the map is the same to rounding, only its cost changes)
-    #[arg(long, value_enum, default_value_t = OrderingArg::Auto)]
-    pub ordering: OrderingArg,
+    #[arg(long, value_parser = choice::<FactorOrder>(), default_value_t = FactorOrder::Auto)]
+    pub ordering: FactorOrder,
 }
 
 impl DiskArgs {
-    /// The arguments of `conformap disk MESH -o OUTPUT` with every option at its default.
-    pub fn new(input: InputArgs, output: OutputArgs) -> Self {
-        Self {
-            input,
-            output,
-            method: Method::CcemQn,
-            outer: None,
-            max_iter: None,
-            tol: None,
-            keep_folds: false,
-            ordering: OrderingArg::Auto,
-        }
-    }
-}
-
-/// Several boundary loops on a connected genus-0 mesh: the disk with circular holes.
-fn has_holes(mesh: &TriMesh) -> bool {
-    matches!(mesh.topology(), Topology::MultiplyConnected { .. })
-}
-
-impl MapCommand for DiskArgs {
-    fn name(&self) -> &'static str {
-        "disk"
-    }
-
-    fn work(&self) -> &'static str {
-        "a disk map"
-    }
-
-    fn input(&self) -> &InputArgs {
-        &self.input
-    }
-
-    fn output(&self) -> &OutputArgs {
-        &self.output
-    }
-
-    fn check_usage(&self) -> Result<(), Failure> {
-        match self.tol {
-            Some(tol) if !(tol.is_finite() && tol >= 0.0) => Err(Failure::Usage(format!(
-                "--tol must be a finite number ≥ 0, got {tol}"
-            ))),
-            _ => Ok(()),
-        }
-    }
-
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        match self.method.library() {
-            _ if has_holes(mesh) => koebe_peak_bytes(mesh),
-            Some(method) => method.peak_bytes(mesh),
-            // the double cover: twice the vertices and edges, every vertex factored
-            None => {
-                let (v, e) = (2 * mesh.num_vertices(), 2 * mesh.num_edges());
-                PeakMemory::laplacian(v, e, v).bytes()
-            }
-        }
-    }
-
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let loops = mesh.boundary_loops().len();
-        if let Some(k) = self.outer.filter(|&k| k >= loops.max(1)) {
-            return Err(Failure::Usage(format!(
-                "--outer {k}: the mesh has {loops} boundary loop(s), numbered from 0 \
-                 (`conformap info` lists them)"
-            )));
-        }
-        if has_holes(mesh) {
-            return super::disk_holes::solve(self, input);
-        }
-        match self.method.library() {
-            Some(method) => self.solve_disk(input, method),
-            None => self.solve_double_cover(input),
-        }
-    }
-}
-
-impl DiskArgs {
-    /// One boundary loop, a method of conformap-disk.
-    fn solve_disk(&self, input: &Input, method: DiskMethod) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let fail = |e: conformap_disk::DiskError| input.fail(e.into());
-        let problem_options = ProblemOptions::DEFAULT.with_ordering(self.ordering.library());
-        let mut problem = DiskProblem::with_options(mesh, &problem_options).map_err(fail)?;
-        let options = DiskOptions::DEFAULT
+    /// The job these arguments ask for.
+    pub fn to_job(&self) -> DiskJob {
+        let mut job = DiskJob::new(self.input.to_options(), self.output.to_options())
+            .with_method(self.method)
             .with_max_iter(self.max_iter)
-            .with_tol(self.tol)
-            .with_keep_folds(self.keep_folds);
-        let result = run_disk_method(&mut problem, method, &options).map_err(fail)?;
-        let stats = problem.interior_factor().stats().clone();
-        let t = Instant::now();
-        let metrics = planar_map_metrics(mesh, &result.map, &MetricsOptions::default())?;
-        let s = &result.report;
-        let summary = format!(
-            "{} vertices, {} faces; {} in {} iterations{}; E_C = {:.6e}, mean angle \
-             distortion {:.3}°, flipped faces {}",
-            mesh.num_vertices(),
-            mesh.num_faces(),
-            match &s.fallback_from {
-                Some(asked) => format!("{} (fallback: {asked} would fold)", s.method),
-                None => s.method.clone(),
-            },
-            s.iterations,
-            if s.converged { " (converged)" } else { "" },
-            metrics.conformal_energy,
-            metrics.angle_distortion_deg.mean,
-            metrics.flipped_faces,
-        );
-        let mut sections = serde_json::Map::new();
-        sections.insert(
-            "factorization".into(),
-            json!({
-                "ordering": stats.ordering,
-                "interior_vertices": stats.n,
-                "nnz_factor": stats.nnz_factor,
-            }),
-        );
-        Ok(Solved {
-            picture_domain: None,
-            method: s.method.clone(),
-            uv: disk_uv(&result.map).into(),
-            flat: (planar_points(&result.map), None),
-            solver: SolverSection::new(
-                s.iterations,
-                s.converged,
-                s.energy_history.clone(),
-                s.residual,
-                s,
-            ),
-            param: None,
-            sections,
-            metrics: MetricsSection::planar(metrics),
-            timings: StageTimings {
-                assemble: s.timings_ms.assemble,
-                factor: s.timings_ms.factor,
-                analyse: stats.analyse_ms,
-                solve: s.timings_ms.solve,
-                metrics: ms_since(t),
-                ..StageTimings::default()
-            },
-            strict_violation: match &s.fallback_from {
-                Some(asked) => Some(format!(
-                    "{asked} would fold; the {} map was returned",
-                    s.method
-                )),
-                None => (!s.converged).then(|| {
-                    format!(
-                        "{} did not converge in {} iterations",
-                        s.method, s.iterations
-                    )
-                }),
-            },
-            summary,
-        })
-    }
-
-    /// One boundary loop, through the double cover and its sphere map.
-    fn solve_double_cover(&self, input: &Input) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let out = double_cover_disk_map(mesh, &SphereOptions::DEFAULT)
-            .map_err(|e| input.fail(e.into()))?;
-        let t = Instant::now();
-        let mut metrics = planar_map_metrics(mesh, &out.map, &MetricsOptions::default())?;
-        let mut map = out.map.clone();
-        // the covering's map can fold crowded faces (maze, igea_open): the disk crate's
-        // flip-free guard repairs it, as for every other method
-        let mut unfolded = None;
-        if metrics.flipped_faces > 0 && !self.keep_folds {
-            let fail = |e: conformap_disk::DiskError| input.fail(e.into());
-            let problem =
-                DiskProblem::with_options(mesh, &ProblemOptions::DEFAULT).map_err(fail)?;
-            let u = unfold_disk_map(&problem, &map).map_err(fail)?;
-            map = u.map.clone();
-            metrics = planar_map_metrics(mesh, &map, &MetricsOptions::default())?;
-            unfolded = Some(json!({
-                "flipped_before": u.flipped_before,
-                "flipped_after": u.flipped_after,
-                "repaired_gaps": u.repaired_gaps,
-                "gap_floor": u.gap_floor,
-            }));
-        }
-        let r = &out.report;
-        let summary = format!(
-            "{} vertices, {} faces; double cover ({} vertices) and its sphere map; E_C = \
-             {:.6e}, mean angle distortion {:.3}°, flipped faces {}",
-            mesh.num_vertices(),
-            mesh.num_faces(),
-            r.cover_vertices,
-            metrics.conformal_energy,
-            metrics.angle_distortion_deg.mean,
-            metrics.flipped_faces,
-        );
-        let st = &r.sphere.timings_ms;
-        Ok(Solved {
-            picture_domain: None,
-            method: "double-cover".to_string(),
-            uv: disk_uv(&map).into(),
-            flat: (planar_points(&map), None),
-            // a direct method: one stage per sphere-map stage; the residual is Angenent's
-            solver: SolverSection::new(
-                r.sphere.stages.len().saturating_sub(1),
-                r.sphere.residual <= conformap_sphere::SPHERE_SOLVE_RESIDUAL_TOL,
-                r.sphere
-                    .stages
-                    .iter()
-                    .map(|s| s.mean_angle_distortion_deg)
-                    .collect(),
-                r.sphere.residual,
-                r,
-            )
-            .with(
-                "energy_history_is",
-                "mean chord-angle distortion (degrees) of the covering's sphere map after \
-                 each stage",
-            )
-            .with("unfolded", unfolded),
-            param: None,
-            sections: serde_json::Map::new(),
-            metrics: MetricsSection::planar(metrics),
-            timings: StageTimings {
-                assemble: st.assemble,
-                factor: st.factor,
-                solve: r.time_ms - st.assemble - st.factor,
-                metrics: ms_since(t),
-                ..StageTimings::default()
-            },
-            strict_violation: None,
-            summary,
-        })
+            .with_tol(self.tol);
+        job.outer = self.outer;
+        job.keep_folds = self.keep_folds;
+        job.ordering = self.ordering;
+        job
     }
 }

@@ -1,17 +1,10 @@
-//! `conformap metrics MESH PARAM [--json]`: judge any planar map of a mesh.
+//! `conformap metrics`: judge a map of a mesh.
+//! The clap arguments and their job; the job (crate `conformap`) does the work.
 
 use std::path::PathBuf;
 
-use std::fmt::Write;
-
 use clap::Args;
-use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
-use serde_json::json;
-
-use crate::commands::param::{read_map_file, PlanarMap};
-use crate::failure::Failure;
-use crate::pipeline::Outcome;
-use crate::report::InputInfo;
+use conformap::jobs::metrics::MetricsJob;
 
 /// Arguments of `conformap metrics`.
 #[derive(Debug, Args)]
@@ -29,83 +22,9 @@ pub struct MetricsArgs {
     pub json: bool,
 }
 
-/// The JSON of `conformap metrics --json` for the map `map` of `mesh` (read from
-/// `mesh_path`), taken from `param` (its `source`: `texture coordinates`, …); the Python
-/// package calls it on arrays.
-///
-/// # Errors
-/// [`Failure::BadInput`] when the map does not fit the mesh (without the param's path).
-pub fn metrics_report(
-    mesh: &conformap_mesh::TriMesh,
-    mesh_path: &std::path::Path,
-    map: &PlanarMap,
-    param: &str,
-    source: &str,
-) -> Result<serde_json::Value, Failure> {
-    let metrics = match map {
-        PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
-        PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
+impl MetricsArgs {
+    /// The job these arguments ask for.
+    pub fn to_job(&self) -> MetricsJob {
+        MetricsJob::new(&self.mesh, &self.param).with_json(self.json)
     }
-    .map_err(Failure::input)?;
-    Ok(json!({
-        "conformap_version": env!("CARGO_PKG_VERSION"),
-        "command": "metrics",
-        "input": InputInfo::new(mesh_path, mesh),
-        "param": { "path": param, "map_from": source },
-        "metrics": metrics,
-    }))
-}
-
-/// Runs `conformap metrics`: the metrics as text or JSON, for stdout.
-pub fn run(args: &MetricsArgs) -> Result<Outcome, Failure> {
-    let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let mesh = &loaded.mesh;
-    let param = read_map_file(&args.param, &args.mesh, mesh)?;
-    let (map, source) = param.planar_map();
-    let value = metrics_report(
-        mesh,
-        &args.mesh,
-        &map,
-        &args.param.display().to_string(),
-        source,
-    )
-    .map_err(|f| f.in_file(&args.param))?;
-    let mut out = String::new();
-    if args.json {
-        out = serde_json::to_string_pretty(&value).unwrap_or_default();
-    } else {
-        let m = &value["metrics"];
-        let mut say = |line: String| {
-            let _ = writeln!(out, "{line}");
-        };
-        say(format!(
-            "map of {} from {} ({source})",
-            args.mesh.display(),
-            args.param.display()
-        ));
-        for key in [
-            "conformal_energy",
-            "dirichlet_energy",
-            "image_area",
-            "flipped_faces",
-            "degenerate_faces",
-            "circle_residual_max",
-        ] {
-            say(format!("{key:22} {}", m[key]));
-        }
-        say(format!(
-            "{:22} {}",
-            "angle_distortion_deg", m["angle_distortion_deg"]
-        ));
-        say(format!("{:22} {}", "beltrami_abs", m["beltrami_abs"]));
-        say(format!(
-            "{:22} {}",
-            "area_distortion_log", m["area_distortion_log"]
-        ));
-        out.pop();
-    }
-    Ok(Outcome {
-        stdout: Some(out),
-        ..Outcome::default()
-    })
 }

@@ -1,44 +1,12 @@
-//! `conformap mobius MESH PARAM --domain disk|sphere --objective uniform|emphasize ...`: the
-//! optimal Möbius transformation of a disk or sphere map.
+//! `conformap mobius`: optimal Möbius transformation of a disk or sphere map.
+//! The clap arguments and their job; the job (crate `conformap`) does the work.
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
-use conformap_mesh::TriMesh;
-use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
-use conformap_operators::PeakMemory;
-use conformap_sphere::{
-    equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
-    sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
-    MAP_RADIUS_TOL,
-};
+use clap::Args;
+use conformap::jobs::mobius::{Domain, MobiusJob, Objective, DEFAULT_MAX_AREA_SCALE};
 
-use crate::commands::param::{read_map_file, read_region, MapFile};
-use crate::failure::Failure;
-use crate::pipeline::{disk_uv, planar_points, Input, InputArgs, MapCommand, OutputArgs, Solved};
-use crate::report::{ms_since, MetricsSection, ParamInfo, SolverSection, StageTimings};
-
-/// The domain of the map.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Domain {
-    /// A planar map in the unit disk; Möbius maps `(az + b)/(b̄z + ā)`.
-    Disk,
-    /// A map onto the unit sphere; Möbius maps `(az + b)/(cz + d)` through stereographic
-    /// projection.
-    Sphere,
-}
-
-/// The energy to optimize.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Objective {
-    /// Minimize the uniformity energy Σ (image area share − surface area share)².
-    Uniform,
-    /// Maximize the image-area share of the faces in --region (with --max-area-scale).
-    Emphasize,
-    /// Maximize the mean log area magnification of the faces in --region (no cap needed).
-    EmphasizeDensity,
-}
+use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap mobius`.
 #[derive(Debug, Clone, Args)]
@@ -56,10 +24,10 @@ pub struct MobiusArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Domain of the map.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::<Domain>())]
     pub domain: Domain,
     /// Energy to optimize.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::<Objective>())]
     pub objective: Objective,
     /// Faces to emphasize: a text file with one 0-based face index per line (blank lines and
     /// lines starting with # are skipped). Required with --objective emphasize.
@@ -68,284 +36,22 @@ pub struct MobiusArgs {
     /// Largest area magnification the emphasizing Möbius map may apply (> 1; only for
     /// --objective emphasize): the share of an emphasized region has no maximum, it tends to
     /// 100 % as the map degenerates.
-    #[arg(long, default_value_t = EMPHASIZE_MAX_AREA_SCALE)]
+    #[arg(long, default_value_t = DEFAULT_MAX_AREA_SCALE)]
     pub max_area_scale: f64,
 }
 
-/// The moved map of one domain, before it becomes a [`Solved`].
-struct Moved {
-    uv: Vec<[f64; 2]>,
-    flat: Vec<[f64; 3]>,
-    report: MobiusReport,
-    metrics: MetricsSection,
-    from: &'static str,
-}
-
-impl MapCommand for MobiusArgs {
-    fn name(&self) -> &'static str {
-        "mobius"
-    }
-
-    fn work(&self) -> &'static str {
-        "an optimal Möbius map"
-    }
-
-    fn input(&self) -> &InputArgs {
-        &self.input
-    }
-
-    fn output(&self) -> &OutputArgs {
-        &self.output
-    }
-
-    fn picture_domain(&self) -> crate::pipeline::PictureDomain {
-        match self.domain {
-            Domain::Disk => crate::pipeline::PictureDomain::Plane,
-            Domain::Sphere => crate::pipeline::PictureDomain::Sphere,
-        }
-    }
-
-    fn other_inputs(&self) -> Vec<&Path> {
-        std::iter::once(self.param.as_path())
-            .chain(self.region.as_deref())
-            .collect()
-    }
-
-    fn check_usage(&self) -> Result<(), Failure> {
-        match (self.objective, &self.region) {
-            (Objective::Emphasize | Objective::EmphasizeDensity, None) => {
-                return Err(Failure::Usage(
-                    "--objective emphasize needs --region FACES.txt".to_string(),
-                ))
-            }
-            (Objective::Uniform, Some(_)) => {
-                return Err(Failure::Usage(
-                    "--region is only used with --objective emphasize or emphasize-density"
-                        .to_string(),
-                ))
-            }
-            _ => {}
-        }
-        if !(self.max_area_scale > 1.0 && self.max_area_scale.is_finite()) {
-            return Err(Failure::Usage(format!(
-                "--max-area-scale must be a finite number > 1, got {}",
-                self.max_area_scale
-            )));
-        }
-        Ok(())
-    }
-
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // no factorization: the mesh, the map, per-face areas
-        PeakMemory::laplacian(mesh.num_vertices(), mesh.num_edges(), 2).bytes()
-    }
-
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let t = Instant::now();
-        // connectivity checked, geometry not; non-finite values are refused by the
-        // optimization, which names the vertex
-        let param = read_map_file(&self.param, &self.input.mesh, mesh)?;
-        let region = match &self.region {
-            Some(path) => Some(read_region(path, mesh.num_faces())?),
-            None => None,
-        };
-        self.solve_with(input, &param, region, ms_since(t))
-    }
-}
-
 impl MobiusArgs {
-    /// [`MapCommand::solve`] on a map and a region already in memory (the Python package's
-    /// arrays): `param` stands for the file `self.param` names (its connectivity already
-    /// checked against the mesh), `region` for the faces of `--region` (each checked with
-    /// [`crate::commands::param::region_face`]); `read_ms` is the report's `read` time.
-    ///
-    /// # Errors
-    /// A usage failure when the objective needs a region and there is none; every failure
-    /// of the optimization and of the metrics.
-    pub fn solve_with(
-        &self,
-        input: &Input,
-        param: &MapFile,
-        region: Option<Vec<usize>>,
-        read_ms: f64,
-    ) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let objective = match (self.objective, region) {
-            (Objective::Uniform, _) => MobiusObjective::Uniform,
-            (Objective::Emphasize, Some(region)) => MobiusObjective::Emphasize { region },
-            (Objective::EmphasizeDensity, Some(region)) => {
-                MobiusObjective::EmphasizeDensity { region }
-            }
-            (_, None) => {
-                return Err(Failure::Usage(
-                    "--objective emphasize needs --region FACES.txt".to_string(),
-                ))
-            }
-        };
-        let options = MobiusOptions::DEFAULT.with_max_area_scale(self.max_area_scale);
-        let t = Instant::now();
-        let moved = match self.domain {
-            Domain::Disk => self.disk(mesh, param, &objective, &options)?,
-            Domain::Sphere => self.sphere(mesh, param, &objective, &options)?,
-        };
-        let metrics_ms = (ms_since(t) - moved.report.time_ms).max(0.0);
-        let mobius = moved.report;
-        let best = mobius
-            .starts
-            .get(mobius.best_start)
-            .map_or(0, |s| s.iterations);
-        let solver = SolverSection::new(
-            best,
-            mobius.converged,
-            mobius.starts.iter().map(|s| s.energy).collect(),
-            mobius.gradient_norm,
-            &serde_json::json!({}),
-        )
-        .with(
-            "energy_history_is",
-            "the objective at the optimum of each start",
-        )
-        .with(
-            "residual_is",
-            "the objective's gradient norm at the optimum",
-        )
-        .with("mobius", &mobius);
-        let summary = summary(self, &mobius);
-        Ok(Solved {
-            picture_domain: None,
-            method: format!("newton-{}", mobius.objective),
-            uv: moved.uv.into(),
-            flat: (moved.flat, None),
-            solver,
-            param: Some(ParamInfo {
-                path: self.param.display().to_string(),
-                map_from: moved.from,
-            }),
-            sections: serde_json::Map::new(),
-            metrics: moved.metrics,
-            timings: StageTimings {
-                read: read_ms,
-                solve: mobius.time_ms,
-                metrics: metrics_ms,
-                ..StageTimings::default()
-            },
-            strict_violation: (!mobius.converged)
-                .then(|| "the Möbius optimization did not converge".to_string()),
-            summary,
-        })
+    /// The job these arguments ask for.
+    pub fn to_job(&self) -> MobiusJob {
+        let mut job = MobiusJob::new(
+            self.input.to_options(),
+            &self.param,
+            self.output.to_options(),
+            self.domain,
+            self.objective,
+        );
+        job.region = self.region.clone();
+        job.max_area_scale = self.max_area_scale;
+        job
     }
-
-    fn fail(&self, e: conformap_sphere::SphereError) -> Failure {
-        Failure::from(e).in_file(&self.param)
-    }
-
-    /// A disk map, moved by its optimal automorphism.
-    fn disk(
-        &self,
-        mesh: &TriMesh,
-        param: &MapFile,
-        objective: &MobiusObjective,
-        options: &MobiusOptions,
-    ) -> Result<Moved, Failure> {
-        let (map, from) = param.planar()?;
-        let best =
-            optimize_disk_mobius(mesh, &map, objective, options).map_err(|e| self.fail(e))?;
-        let before = planar_map_metrics(mesh, &map, &MetricsOptions::default())
-            .map_err(|e| Failure::input(format!("{}: {e}", self.param.display())))?;
-        let after = planar_map_metrics(mesh, &best.map, &MetricsOptions::default())?;
-        // the map was checked by planar_map_metrics above
-        let cr_before = cross_ratio_distortion(mesh, &map)?;
-        let cr_after = cross_ratio_distortion(mesh, &best.map)?;
-        let metrics = MetricsSection::planar(after)
-            .with("uniformity_energy", best.report.uniformity_after)
-            .with("uniformity_energy_before", best.report.uniformity_before)
-            .with("angle_distortion_deg_before", before.angle_distortion_deg)
-            .with("cross_ratio_log", cr_after)
-            .with("cross_ratio_log_before", cr_before);
-        Ok(Moved {
-            uv: disk_uv(&best.map),
-            flat: planar_points(&best.map),
-            report: best.report,
-            metrics,
-            from,
-        })
-    }
-
-    /// A sphere map, moved by its optimal Möbius transformation.
-    fn sphere(
-        &self,
-        mesh: &TriMesh,
-        param: &MapFile,
-        objective: &MobiusObjective,
-        options: &MobiusOptions,
-    ) -> Result<Moved, Failure> {
-        let on_sphere = param.positions.iter().all(|p| {
-            ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() <= MAP_RADIUS_TOL
-        });
-        let (points, from): (Vec<[f64; 3]>, &'static str) = match (&param.uv, on_sphere) {
-            (_, true) => (param.positions.clone(), "sphere positions"),
-            (Some(uv), false) => (
-                uv.iter().map(|&t| from_equirectangular_uv(t)).collect(),
-                "equirectangular texture coordinates",
-            ),
-            (None, false) => {
-                return Err(Failure::BadInput(
-                    format!(
-                        "{}: neither are its positions on the unit sphere nor has it texture \
-                         coordinates",
-                        self.param.display()
-                    ),
-                    Some("pass the --flat or -o output of `conformap sphere`".to_string()),
-                ))
-            }
-        };
-        let best =
-            optimize_sphere_mobius(mesh, &points, objective, options).map_err(|e| self.fail(e))?;
-        let before = sphere_metrics(mesh, &points).map_err(|e| self.fail(e))?;
-        let after = sphere_metrics(mesh, &best.points).map_err(|e| self.fail(e))?;
-        let metrics = MetricsSection::sphere(after)
-            .with("uniformity_energy_before", before.uniformity_energy)
-            .with("angle_distortion_deg_before", before.angle_distortion_deg)
-            .with("cross_ratio_log_before", before.cross_ratio_log);
-        Ok(Moved {
-            uv: best.points.iter().map(|&p| equirectangular_uv(p)).collect(),
-            flat: best.points,
-            report: best.report,
-            metrics,
-            from,
-        })
-    }
-}
-
-/// The summary line of a Möbius optimization.
-fn summary(args: &MobiusArgs, mobius: &MobiusReport) -> String {
-    let cap = if args.objective == Objective::Emphasize {
-        format!(
-            ", area magnification cap {}{}",
-            args.max_area_scale,
-            if mobius.cap_active { ", reached" } else { "" }
-        )
-    } else {
-        String::new()
-    };
-    let what = match (mobius.region_share_before, mobius.region_share_after) {
-        (Some(b), Some(a)) => format!(
-            "emphasized region's image share {:.2} % → {:.2} % (surface share {:.2} %{cap})",
-            100.0 * b,
-            100.0 * a,
-            100.0 * mobius.region_surface_share.unwrap_or(0.0),
-        ),
-        _ => format!(
-            "uniformity energy {:.4e} → {:.4e}",
-            mobius.uniformity_before, mobius.uniformity_after
-        ),
-    };
-    let limited = match mobius.flip_limited {
-        Some(t) => format!(
-            " (boost shortened to {t:.3} of the optimum: a longer one inverts crowded faces)"
-        ),
-        None => String::new(),
-    };
-    format!("optimal {} Möbius map: {what}{limited}", mobius.domain)
 }

@@ -1,17 +1,12 @@
-//! One module per subcommand. The map commands (`disk`, `sphere`, `mobius`, `global`) implement
-//! [`crate::pipeline::MapCommand`]; `info` and `metrics` only read and describe;
-//! `render` draws any map; `batch` runs a map command over many meshes.
+//! One module per subcommand: its clap arguments and their conversion into the job of
+//! crate `conformap` (`to_job`), which does the work.
 
 pub mod batch;
-pub mod batch_inputs;
 pub mod disk;
-pub mod disk_holes;
 pub mod global;
-pub mod global_topology;
 pub mod info;
 pub mod metrics;
 pub mod mobius;
 pub mod morph;
-pub mod param;
 pub mod render;
 pub mod sphere;

@@ -1,28 +1,10 @@
-//! `conformap sphere MESH -o OUT ...`: conformal map of a closed genus-0 mesh onto the unit
-//! sphere.
+//! `conformap sphere`: conformal map of a closed genus-0 mesh onto the unit sphere.
+//! The clap arguments and their job; the job (crate `conformap`) does the work.
 
-use std::time::Instant;
+use clap::Args;
+use conformap::jobs::sphere::{SphereJob, SphereMobius};
 
-use clap::{Args, ValueEnum};
-use conformap_mesh::TriMesh;
-use conformap_operators::PeakMemory;
-use conformap_sphere::{
-    equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
-    MobiusOptions, SphereMetrics, SphereOptions, SPHERE_SOLVE_RESIDUAL_TOL,
-};
-
-use crate::failure::Failure;
-use crate::pipeline::{Input, InputArgs, MapCommand, OutputArgs, PictureDomain, Solved};
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
-
-/// The Möbius normalization applied to the sphere map.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SphereMobius {
-    /// None: the map as computed (source of Angenent's dipole near the north pole).
-    None,
-    /// The Möbius map minimizing the uniformity energy (Jin et al. 2004, §3.4).
-    Uniform,
-}
+use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap sphere`.
 #[derive(Debug, Clone, Args)]
@@ -36,155 +18,13 @@ pub struct SphereArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Möbius normalization of the map.
-    #[arg(long, value_enum, default_value_t = SphereMobius::None)]
+    #[arg(long, value_parser = choice::<SphereMobius>(), default_value_t = SphereMobius::None)]
     pub mobius: SphereMobius,
 }
 
-impl MapCommand for SphereArgs {
-    fn name(&self) -> &'static str {
-        "sphere"
-    }
-
-    fn work(&self) -> &'static str {
-        "a sphere map"
-    }
-
-    fn input(&self) -> &InputArgs {
-        &self.input
-    }
-
-    fn output(&self) -> &OutputArgs {
-        &self.output
-    }
-
-    fn picture_domain(&self) -> PictureDomain {
-        PictureDomain::Sphere
-    }
-
-    fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // Angenent's solve and the corrections factor (nearly) every vertex
-        let v = mesh.num_vertices();
-        PeakMemory::laplacian(v, mesh.num_edges(), v).bytes()
-    }
-
-    fn solve(&self, input: &Input) -> Result<Solved, Failure> {
-        let mesh = &input.mesh;
-        let fail = |e: conformap_sphere::SphereError| input.fail(e.into());
-        let map = sphere_map(mesh, &SphereOptions::DEFAULT).map_err(fail)?;
-        let t = Instant::now();
-        let before = sphere_metrics(mesh, &map.points).map_err(fail)?;
-        let mut metrics_ms = ms_since(t);
-        let (points, mobius, after, mobius_ms) = match self.mobius {
-            SphereMobius::None => (map.points.clone(), None, before.clone(), 0.0),
-            SphereMobius::Uniform => {
-                let t = Instant::now();
-                let best = optimize_sphere_mobius(
-                    mesh,
-                    &map.points,
-                    &MobiusObjective::Uniform,
-                    &MobiusOptions::DEFAULT,
-                )
-                .map_err(fail)?;
-                let mobius_ms = ms_since(t);
-                let t = Instant::now();
-                let after = sphere_metrics(mesh, &best.points).map_err(fail)?;
-                metrics_ms += ms_since(t);
-                (best.points, Some(best.report), after, mobius_ms)
-            }
-        };
-        let s = &map.report;
-        let method = match self.mobius {
-            SphereMobius::None => s.method.clone(),
-            SphereMobius::Uniform => format!("{}+mobius-uniform", s.method),
-        };
-        let mut metrics = MetricsSection::sphere(after.clone());
-        if let Some(m) = &mobius {
-            metrics = metrics
-                .with("uniformity_energy_before_mobius", m.uniformity_before)
-                .with(
-                    "angle_distortion_deg_before_mobius",
-                    before.angle_distortion_deg,
-                );
-        }
-        // a direct method: converged when Angenent's solve is accurate and (with a Möbius
-        // normalization) its optimization converged
-        let converged =
-            s.residual <= SPHERE_SOLVE_RESIDUAL_TOL && mobius.as_ref().is_none_or(|m| m.converged);
-        let solver = SolverSection::new(
-            s.stages.len().saturating_sub(1),
-            converged,
-            s.stages
-                .iter()
-                .map(|r| r.mean_angle_distortion_deg)
-                .collect(),
-            s.residual,
-            &serde_json::json!({}),
-        )
-        .with(
-            "energy_history_is",
-            "mean chord-angle distortion (degrees) after each stage",
-        )
-        .with("sphere", s)
-        .with("mobius", &mobius);
-        let summary = summary(mesh, s.corrections, mobius.is_some(), &after);
-        let strict_violation = strict_violation(&after, converged, s.residual);
-        Ok(Solved {
-            picture_domain: None,
-            method,
-            uv: points
-                .iter()
-                .map(|&p| equirectangular_uv(p))
-                .collect::<Vec<_>>()
-                .into(),
-            flat: (points, None),
-            solver,
-            param: None,
-            sections: serde_json::Map::new(),
-            metrics,
-            timings: StageTimings {
-                assemble: s.timings_ms.assemble,
-                factor: s.timings_ms.factor,
-                solve: s.timings_ms.solve + mobius_ms,
-                metrics: metrics_ms,
-                ..StageTimings::default()
-            },
-            strict_violation,
-            summary,
-        })
-    }
-}
-
-/// The summary line of a sphere map.
-fn summary(mesh: &TriMesh, corrections: usize, mobius: bool, after: &SphereMetrics) -> String {
-    format!(
-        "{} vertices, {} faces; sphere map with {} correction(s){}; mean angle \
-         distortion {:.3}°, inverted faces {}, uniformity energy {:.3e}",
-        mesh.num_vertices(),
-        mesh.num_faces(),
-        corrections,
-        if mobius {
-            " and uniform Möbius normalization"
-        } else {
-            ""
-        },
-        after.angle_distortion_deg.mean,
-        after.flipped_faces,
-        after.uniformity_energy,
-    )
-}
-
-/// Why `--strict` refuses the map: inverted faces, or a solve that did not converge.
-fn strict_violation(after: &SphereMetrics, converged: bool, residual: f64) -> Option<String> {
-    if after.flipped_faces > 0 {
-        Some(format!(
-            "{} triangles are inverted on the sphere",
-            after.flipped_faces
-        ))
-    } else if !converged {
-        Some(format!(
-            "the sphere map did not converge (solve residual {residual:.1e})"
-        ))
-    } else {
-        None
+impl SphereArgs {
+    /// The job these arguments ask for.
+    pub fn to_job(&self) -> SphereJob {
+        SphereJob::new(self.input.to_options(), self.output.to_options()).with_mobius(self.mobius)
     }
 }

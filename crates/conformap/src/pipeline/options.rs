@@ -1,33 +1,29 @@
-//! The argument groups every map command shares (`#[command(flatten)]`), so that a flag
-//! means the same everywhere and a new command gets all of them by one line.
+//! The option groups every map job shares, so that an option means the same everywhere and
+//! a new job gets all of them by one field each.
 
 use std::path::PathBuf;
 
-use clap::Args;
-
 /// Where the mesh comes from and how it is prepared: `MESH [--repair [--vertex-map F]]
 /// [--max-memory SIZE]`.
-#[derive(Debug, Clone, Args)]
-pub struct InputArgs {
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
+pub struct InputOptions {
     /// The mesh (.obj, .gltf, .glb).
     pub mesh: PathBuf,
     /// Repair the input first: drop duplicate faces, keep the largest component, orient the
     /// faces consistently, drop unreferenced vertices. Outputs then hold the repaired mesh
     /// (vt index k belongs to repaired vertex k); the report lists the repairs.
-    #[arg(long)]
     pub repair: bool,
     /// With --repair: write the vertex map here, one line per output vertex holding its
     /// 0-based input vertex.
-    #[arg(long, requires = "repair")]
     pub vertex_map: Option<PathBuf>,
     /// Refuse (exit 1, nothing computed) if the estimated peak memory exceeds SIZE (bytes,
     /// or with K/M/G/T, e.g. 4G). Default: the memory available (Linux MemAvailable, within
     /// the cgroup limit); no check where that is unknown.
-    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
     pub max_memory: Option<u64>,
 }
 
-impl InputArgs {
+impl InputOptions {
     /// The arguments for `mesh` with every option at its default.
     pub fn new(mesh: impl Into<PathBuf>) -> Self {
         Self {
@@ -37,34 +33,42 @@ impl InputArgs {
             max_memory: None,
         }
     }
+
+    /// With the repairs of `--repair`.
+    pub fn with_repair(mut self, repair: bool) -> Self {
+        self.repair = repair;
+        self
+    }
+
+    /// With a memory limit of `bytes`.
+    pub fn with_max_memory(mut self, bytes: Option<u64>) -> Self {
+        self.max_memory = bytes;
+        self
+    }
 }
 
 /// What a map command writes: `-o OUT [--flat FLAT] [--report R.json] [--strict]`.
-#[derive(Debug, Clone, Args)]
-pub struct OutputArgs {
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
+pub struct OutputOptions {
     /// Output mesh: the input's 3D positions with the map as texture coordinates (.obj,
     /// .gltf, .glb; the command's help says how the map becomes texture coordinates).
-    #[arg(short, long)]
     pub output: PathBuf,
     /// Also write the raw map as a mesh: (u, v, 0) for planar maps, the unit-sphere points
     /// for sphere maps.
-    #[arg(long)]
     pub flat: Option<PathBuf>,
     /// Write a JSON report here.
-    #[arg(long)]
     pub report: Option<PathBuf>,
     /// Also write pictures of the result: PREFIX_surface.png (the surface with a
     /// checkerboard through the map) and PREFIX_map.png (the map coloured by angle
     /// distortion), 1024 × 1024.
-    #[arg(long, value_name = "PREFIX")]
     pub png: Option<PathBuf>,
     /// Exit with code 3, writing nothing, if the solver did not converge (or, for sphere
     /// maps, a triangle is inverted).
-    #[arg(long)]
     pub strict: bool,
 }
 
-impl OutputArgs {
+impl OutputOptions {
     /// The arguments writing only `output`.
     pub fn new(output: impl Into<PathBuf>) -> Self {
         Self {
@@ -74,6 +78,31 @@ impl OutputArgs {
             png: None,
             strict: false,
         }
+    }
+
+    /// Also writing the raw map as a mesh to `path`.
+    pub fn with_flat(mut self, path: impl Into<PathBuf>) -> Self {
+        self.flat = Some(path.into());
+        self
+    }
+
+    /// Also writing the JSON report to `path`.
+    pub fn with_report(mut self, path: impl Into<PathBuf>) -> Self {
+        self.report = Some(path.into());
+        self
+    }
+
+    /// Also writing the pictures `PREFIX_surface.png` and `PREFIX_map.png`.
+    pub fn with_png(mut self, prefix: impl Into<PathBuf>) -> Self {
+        self.png = Some(prefix.into());
+        self
+    }
+
+    /// Refusing (exit class numerical, nothing written) a result the solver did not
+    /// converge to.
+    pub fn with_strict(mut self, strict: bool) -> Self {
+        self.strict = strict;
+        self
     }
 }
 

@@ -1,17 +1,12 @@
-//! The context a run happens in: where its progress goes (an `indicatif` spinner on stderr,
-//! or nowhere) and the memory budget it shares with other runs (`batch --jobs N`).
-//!
-//! The context is per thread and scoped ([`RunContext::scope`]): [`crate::pipeline::run_map`]
-//! reports its stages with [`stage`] and reserves its memory estimate with [`reserve`], and
-//! both do nothing outside a scope (library callers, the Python package, tests). So the
-//! command dispatch stays as it is, and every map command gets progress and the budget.
+//! Progress on stderr: an `indicatif` spinner (a batch's bar) that appears only on a
+//! terminal and only when the work takes over a second, told what the job is doing through
+//! [`conformap::pipeline::context::Watcher`].
 
-use std::cell::RefCell;
 use std::io::IsTerminal;
 use std::sync::mpsc;
-use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
+use conformap::pipeline::context::Watcher;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Work shorter than this shows no progress at all: 1 s (the spinner appears after it).
@@ -132,112 +127,27 @@ impl Drop for Progress {
     }
 }
 
-/// A memory budget shared by concurrent runs: a run waits until its estimate fits beside
-/// the estimates of the runs going on (a run alone always starts: whether it fits at all is
-/// its own memory check's business, as in a single run).
-#[derive(Debug)]
-pub struct MemoryBudget {
-    total: u64,
-    used: Mutex<u64>,
-    freed: Condvar,
-}
+/// A job's watcher drawing on a progress bar: stages as its message, a batch's inputs as
+/// its position.
+#[derive(Debug, Clone)]
+pub struct BarWatcher(pub ProgressBar);
 
-impl MemoryBudget {
-    /// A budget of `total` bytes.
-    pub fn new(total: u64) -> Arc<Self> {
-        Arc::new(Self {
-            total,
-            used: Mutex::new(0),
-            freed: Condvar::new(),
-        })
+impl Watcher for BarWatcher {
+    fn started(&self, total: usize) {
+        self.0.set_length(total as u64);
     }
 
-    /// The bytes reserved now.
-    pub fn used(&self) -> u64 {
-        *self.used.lock().unwrap_or_else(|p| p.into_inner())
+    fn stage(&self, message: &str) {
+        self.0.set_message(message.to_string());
     }
 
-    /// Waits until `bytes` fit (or nothing else is reserved) and reserves them. Whoever
-    /// waits holds nothing, so runs cannot wait on each other in a cycle.
-    pub fn reserve(self: &Arc<Self>, bytes: u64) -> Reservation {
-        let mut used = self.used.lock().unwrap_or_else(|p| p.into_inner());
-        while *used > 0 && used.saturating_add(bytes) > self.total {
-            used = self.freed.wait(used).unwrap_or_else(|p| p.into_inner());
-        }
-        *used += bytes;
-        Reservation {
-            budget: Some(Arc::clone(self)),
-            bytes,
-        }
+    fn advanced(&self, done: usize, name: &str) {
+        self.0.set_position(done as u64);
+        self.0.set_message(name.to_string());
     }
-}
 
-/// Bytes reserved in a [`MemoryBudget`], given back when dropped.
-#[derive(Debug)]
-pub struct Reservation {
-    budget: Option<Arc<MemoryBudget>>,
-    bytes: u64,
-}
-
-impl Drop for Reservation {
-    fn drop(&mut self) {
-        if let Some(b) = self.budget.take() {
-            let mut used = b.used.lock().unwrap_or_else(|p| p.into_inner());
-            *used = used.saturating_sub(self.bytes);
-            b.freed.notify_all();
-        }
-    }
-}
-
-/// What the runs on this thread report to and reserve from.
-#[derive(Debug, Clone, Default)]
-pub struct RunContext {
-    /// Where [`stage`] messages go.
-    pub progress: Option<ProgressBar>,
-    /// Where [`reserve`] reserves.
-    pub budget: Option<Arc<MemoryBudget>>,
-}
-
-thread_local! {
-    static CURRENT: RefCell<RunContext> = RefCell::new(RunContext::default());
-}
-
-impl RunContext {
-    /// Runs `f` with this context as the thread's, then restores the previous one.
-    pub fn scope<T>(&self, f: impl FnOnce() -> T) -> T {
-        let previous = CURRENT.with(|c| c.replace(self.clone()));
-        struct Restore(Option<RunContext>);
-        impl Drop for Restore {
-            fn drop(&mut self) {
-                if let Some(p) = self.0.take() {
-                    CURRENT.with(|c| *c.borrow_mut() = p);
-                }
-            }
-        }
-        let _restore = Restore(Some(previous));
-        f()
-    }
-}
-
-/// Tells the thread's progress display what the run is doing now (no-op without one).
-pub fn stage(message: impl Into<String>) {
-    CURRENT.with(|c| {
-        if let Some(bar) = &c.borrow().progress {
-            bar.set_message(message.into());
-        }
-    });
-}
-
-/// Reserves `bytes` in the thread's memory budget, waiting until they fit (no-op without
-/// one).
-pub fn reserve(bytes: u64) -> Reservation {
-    let budget = CURRENT.with(|c| c.borrow().budget.clone());
-    match budget {
-        Some(b) => b.reserve(bytes),
-        None => Reservation {
-            budget: None,
-            bytes: 0,
-        },
+    fn suspend(&self, print: &mut dyn FnMut()) {
+        self.0.suspend(print);
     }
 }
 
@@ -260,23 +170,5 @@ mod tests {
             ProgressMode::decide(false, true, false),
             ProgressMode::Colored
         );
-    }
-
-    #[test]
-    fn budget_waits_until_a_reservation_is_freed() {
-        let budget = MemoryBudget::new(100);
-        let a = budget.reserve(70);
-        // alone, a run always starts, even above the budget
-        assert_eq!(budget.used(), 70);
-        let b2 = Arc::clone(&budget);
-        let waiter = std::thread::spawn(move || {
-            let _r = b2.reserve(50);
-            b2.used()
-        });
-        std::thread::sleep(Duration::from_millis(50));
-        assert_eq!(budget.used(), 70, "50 more must wait beside 70 of 100");
-        drop(a);
-        assert_eq!(waiter.join().ok(), Some(50));
-        assert_eq!(budget.used(), 0);
     }
 }

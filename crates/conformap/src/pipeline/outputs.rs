@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::failure::Failure;
-use crate::pipeline::args::{InputArgs, OutputArgs};
+use crate::pipeline::options::{InputOptions, OutputOptions};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
@@ -28,8 +28,8 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// output without a mesh extension; [`Failure::BadInput`] for a directory that does not
 /// exist or cannot be written.
 pub fn check_command_outputs(
-    input: &InputArgs,
-    output: &OutputArgs,
+    input: &InputOptions,
+    output: &OutputOptions,
     other_inputs: &[&Path],
 ) -> Result<(), Failure> {
     let mut outputs: Vec<(&str, &Path, bool)> = vec![("-o", &output.output, true)];

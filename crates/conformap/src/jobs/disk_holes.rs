@@ -14,26 +14,35 @@ use std::time::Instant;
 
 use conformap_disk::{koebe, KoebeOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use serde_json::json;
 
-use crate::commands::disk::DiskArgs;
 use crate::failure::Failure;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, CircleDomainSection, MetricsSection, Sections, SolverSection, StageTimings,
+};
+
+/// The Koebe options of `disk`'s `outer`, `max_iter` (the sweeps) and `tol`.
+pub fn koebe_options(
+    outer: Option<usize>,
+    max_iter: Option<usize>,
+    tol: Option<f64>,
+) -> KoebeOptions {
+    let mut options = KoebeOptions::DEFAULT.with_outer(outer);
+    if let Some(n) = max_iter {
+        options = options.with_max_sweeps(n);
+    }
+    if let Some(t) = tol {
+        options = options.with_tol(t);
+    }
+    options
+}
 
 /// Maps `input` (connected, genus 0, several boundary loops) onto the unit disk with
 /// circular holes.
-pub fn solve(args: &DiskArgs, input: &Input) -> Result<Solved, Failure> {
+pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let loops = mesh.boundary_loops().len();
-    let mut options = KoebeOptions::DEFAULT.with_outer(args.outer);
-    if let Some(n) = args.max_iter {
-        options = options.with_max_sweeps(n);
-    }
-    if let Some(t) = args.tol {
-        options = options.with_tol(t);
-    }
-    let result = koebe(mesh, &options).map_err(|e| input.fail(e.into()))?;
+    let result = koebe(mesh, options).map_err(|e| input.fail(e.into()))?;
     let r = &result.report;
     let t = Instant::now();
     let metrics_options = MetricsOptions::DEFAULT.with_outer_loop(r.outer_loop);
@@ -63,18 +72,17 @@ pub fn solve(args: &DiskArgs, input: &Input) -> Result<Solved, Failure> {
             .modulus
             .map_or(String::new(), |m| format!(", modulus ln(R/r) = {m:.6}")),
     );
-    let mut sections = serde_json::Map::new();
-    sections.insert(
-        "circle_domain".into(),
-        json!({
-            "outer_loop": r.outer_loop,
-            "reference_hole": result.reference_hole,
-            "normalization": "outer loop on the unit circle with its first vertex at angle 0; \
-                              the reference hole (lowest loop index) centred at 0",
-            "modulus": result.modulus,
-            "circles": result.circles,
+    let sections = Sections {
+        circle_domain: Some(CircleDomainSection {
+            circles: result.circles.clone(),
+            modulus: result.modulus,
+            normalization: "outer loop on the unit circle with its first vertex at angle 0; \
+                            the reference hole (lowest loop index) centred at 0",
+            outer_loop: r.outer_loop,
+            reference_hole: result.reference_hole,
         }),
-    );
+        ..Sections::default()
+    };
     let tm = &r.timings_ms;
     Ok(Solved {
         picture_domain: None,

@@ -25,58 +25,17 @@ use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_sphere::{equirectangular_uv, sphere_metrics};
 use serde_json::json;
 
-use crate::commands::global::{map_solved, FormObjective, GlobalArgs};
 use crate::failure::Failure;
+use crate::jobs::converged::topology_opt_converged;
+use crate::jobs::global_solved::map_solved;
 use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
 use crate::report::{MetricsSection, SolverSection, StageTimings};
 
-/// The flags `--topology-opt` does not combine with (exit 2).
-pub(crate) fn check_usage(args: &GlobalArgs) -> Result<(), Failure> {
-    let conflict = if args.objective != FormObjective::Uniform {
-        Some("--objective (the loop needs the most uniform form)")
-    } else if args.form.is_some() {
-        Some("--form")
-    } else {
-        None
-    };
-    if let Some(flag) = conflict {
-        return Err(Failure::Usage(format!(
-            "--topology-opt does not combine with {flag}"
-        )));
-    }
-    match args.slit_length {
-        Some(f) if !(f > 0.0 && f < 1.0) => Err(Failure::Usage(format!(
-            "--slit-length {f}: must lie in (0, 1) (a fraction of the bounding-box diagonal)"
-        ))),
-        _ => Ok(()),
-    }
-}
-
-/// The options `args` ask for.
-fn options(args: &GlobalArgs) -> TopologyOptOptions {
-    let mut o = TopologyOptOptions::DEFAULT;
-    let mut global = o.global.clone().with_root(args.root);
-    global = global.with_conjugate(args.options(Vec::new()).conjugate);
-    if let Some(s) = args.starts {
-        let search = global.search.with_starts(s);
-        global = global.with_search(search);
-    }
-    o = o.with_global(global);
-    if let Some(n) = args.max_slits {
-        o = o.with_max_slits(n);
-    }
-    if let Some(f) = args.slit_length {
-        o = o.with_slit_length(f);
-    }
-    o
-}
-
 /// Runs the loop and packs its best layout as `global` (or `sphere`) would.
-pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure> {
+pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solved, Failure> {
     let mesh = &input.mesh;
     let fail = |e: conformap_global::GlobalError| input.fail(e.into());
-    let options = options(args);
-    let r = topology_opt(mesh, &options).map_err(fail)?;
+    let r = topology_opt(mesh, options).map_err(fail)?;
     let best = &r.steps[r.best_step];
     let start = &r.steps[0];
     let (mut solved, returned) = match &r.best {
@@ -99,9 +58,7 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
         .iter()
         .flat_map(|s| s.added.iter().map(|a| &a.vertices))
         .collect();
-    solved.sections.insert(
-        "topology_opt".to_string(),
-        json!({
+    solved.sections.topology_opt = Some(json!({
             "returned": returned,
             "returned_is": "sphere: the starting uniform-Möbius sphere map (no slit paid); \
                             disk: the starting uniform-Möbius disk map (no slit paid); \
@@ -119,8 +76,7 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
             "stop": r.stop,
             "steps": r.steps,
             "total_ms": r.total_ms,
-        }),
-    );
+    }));
     solved.method = format!("topology-opt+{}", solved.method);
     solved.summary = format!(
         "topological optimization: {} step(s), best step {} with {} slit(s) (energy {:.3e}, \
@@ -142,7 +98,14 @@ pub(crate) fn solve(args: &GlobalArgs, input: &Input) -> Result<Solved, Failure>
 /// step 0 being the `start` (sphere or disk) map.
 fn step_history(r: &TopologyOpt, start: &str) -> SolverSection {
     let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
-    SolverSection::new(r.steps.len() - 1, true, energies, 0.0, &json!({})).with(
+    SolverSection::new(
+        r.steps.len() - 1,
+        topology_opt_converged(r),
+        energies,
+        0.0,
+        &json!({}),
+    )
+    .with(
         "energy_history_is",
         format!("uniformity energy of each step (step 0: the {start} map)"),
     )
@@ -177,7 +140,7 @@ fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<
         flat: (points.to_vec(), None),
         solver,
         param: None,
-        sections: serde_json::Map::new(),
+        sections: crate::report::Sections::default(),
         metrics: MetricsSection::sphere(m),
         timings: StageTimings {
             metrics: metrics_ms,
@@ -219,7 +182,7 @@ fn disk_solved(
         flat: (planar_points(map), None),
         solver,
         param: None,
-        sections: serde_json::Map::new(),
+        sections: crate::report::Sections::default(),
         metrics,
         timings: StageTimings {
             metrics: metrics_ms,

@@ -3,14 +3,19 @@
 
 use std::fmt;
 
-/// Why a command failed, and so which exit code it returns.
-#[derive(Debug)]
+/// Why a job failed, and so its exit class: the message names the file and the element
+/// (line, vertex, face); [`Failure::hint`] says what to do.
+#[derive(Debug, thiserror::Error)]
 pub enum Failure {
-    /// Bad input: unreadable or invalid file, wrong topology for the command (exit 1).
+    /// Bad input: unreadable or invalid file, wrong topology for the command (exit 1). The
+    /// second field is the hint.
+    #[error("{0}")]
     BadInput(String, Option<String>),
     /// Usage error not caught by the argument parser (exit 2).
+    #[error("{0}")]
     Usage(String),
     /// A numerical failure, e.g. a solver that did not converge under `--strict` (exit 3).
+    #[error("{0}")]
     Numerical(String),
 }
 
@@ -45,14 +50,6 @@ impl Failure {
     /// A bad-input failure with a message.
     pub fn input(msg: impl fmt::Display) -> Self {
         Self::BadInput(msg.to_string(), None)
-    }
-}
-
-impl fmt::Display for Failure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::BadInput(m, _) | Self::Usage(m) | Self::Numerical(m) => f.write_str(m),
-        }
     }
 }
 

@@ -28,7 +28,7 @@ pub struct Report {
     pub solver: SolverSection,
     /// Command-specific sections at the top level (`factorization`, `circle_domain`, …).
     #[serde(flatten)]
-    pub sections: Map<String, Value>,
+    pub sections: Sections,
     /// How good the map is.
     pub metrics: MetricsSection,
     /// The memory check: estimate, limit, measured peak.
@@ -38,6 +38,61 @@ pub struct Report {
     pub repairs: Option<RepairsReport>,
     /// Wall-clock milliseconds per stage.
     pub timings_ms: StageTimings,
+}
+
+/// The command-specific top-level sections of a report, each present only for the
+/// commands that have it (declared in alphabetical order, the order they are written in).
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Sections {
+    /// The disk with circular holes (`disk` on several boundary loops).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub circle_domain: Option<CircleDomainSection>,
+    /// The one sparse factorization of the solve (`disk`, `global`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factorization: Option<FactorizationSection>,
+    /// The holomorphic form, its periods, zeros and seams (`global`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub global: Option<Value>,
+    /// The topological optimization's steps and slits (`global --topology-opt`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub topology_opt: Option<Value>,
+}
+
+/// The `circle_domain` section (fields in alphabetical order, as written).
+#[derive(Debug, Clone, Serialize)]
+pub struct CircleDomainSection {
+    /// Every loop's fitted circle: centre, radius, residual.
+    pub circles: Vec<conformap_operators::LoopCircle>,
+    /// For two loops, the conformal modulus ln(R/r).
+    pub modulus: Option<f64>,
+    /// How the domain is normalized.
+    pub normalization: &'static str,
+    /// The loop mapped onto the unit circle.
+    pub outer_loop: usize,
+    /// The hole centred at 0 (the lowest loop index), if any.
+    pub reference_hole: Option<usize>,
+}
+
+/// The `factorization` section: the size of the one sparse factor.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum FactorizationSection {
+    /// The interior Laplacian `L_II` of a disk map (fields in alphabetical order).
+    Interior {
+        /// Interior vertices (the dimension of `L_II`).
+        interior_vertices: usize,
+        /// Nonzeros of the Cholesky factor.
+        nnz_factor: usize,
+        /// The fill-reducing ordering used.
+        ordering: &'static str,
+    },
+    /// The Laplacian of the surface the forms live on (`global`).
+    Forms {
+        /// Its dimension.
+        dim: usize,
+        /// Nonzeros of the factor.
+        nnz_factor: usize,
+    },
 }
 
 /// The `input` object of a report.

@@ -1,26 +1,18 @@
-//! One pipeline for every map command: read → check every output path → estimate memory →
+//! One pipeline for every map job: read → check every output path → estimate memory →
 //! solve → metrics → write all outputs or none → report.
 //!
-//! A command is a small implementation of [`MapCommand`]: which arguments it has
-//! ([`InputArgs`] and [`OutputArgs`] are flattened into it), how much memory its solve
-//! needs, and the solve itself, which returns a [`Solved`] (the map as texture coordinates
-//! and a flat mesh, the solver's and the metrics' report sections, timings, a summary
-//! line). [`run_map`] does everything else, the same way for every command, and returns
-//! the typed [`Report`] with the lines to print; it prints nothing itself (only `main`
-//! does), so `batch` and the Python package call it as the binary does.
-//!
-//! # Adding a command
-//! 1. An args struct with `#[command(flatten)] input: InputArgs` and
-//!    `#[command(flatten)] output: OutputArgs` and the command's own flags.
-//! 2. `impl MapCommand for ThoseArgs`: `name`, `work`, `input`, `output`, `peak_bytes` (from the
-//!    library's memory model), `solve` (library calls only: no maths here), and
-//!    `check_usage` / `other_inputs` where the command has more to check.
-//! 3. A variant in `crate::cli::Command` whose arm calls [`run_map`].
+//! A job is a small implementation of [`MapJob`]: its [`InputOptions`] and
+//! [`OutputOptions`], how much memory its solve needs, and the solve itself, which returns
+//! a [`Solved`] (the map as texture coordinates and a flat mesh, the solver's and the
+//! metrics' report sections, timings, a summary line). [`run_map`] does everything else,
+//! the same way for every job, and returns the typed [`Report`] with the lines a front end
+//! prints; [`run_in_memory`] runs the middle of it on a mesh already in memory (the Python
+//! package). Nothing here prints.
 
-pub mod args;
 pub mod context;
 pub mod input;
 pub mod memory;
+pub mod options;
 pub mod outputs;
 pub mod pictures;
 
@@ -28,30 +20,39 @@ use std::path::Path;
 use std::time::Instant;
 
 use conformap_mesh::TriMesh;
-use serde_json::{Map, Value};
 
-pub use args::{parse_size, InputArgs, OutputArgs};
 pub use input::{read_input, repair_input, Input};
 pub use memory::MemoryCheck;
+pub use options::{parse_size, InputOptions, OutputOptions};
 pub use outputs::{check_command_outputs, check_outputs, Staged};
 pub use pictures::PictureDomain;
 
 use crate::failure::Failure;
 use crate::report::{
-    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, SolverSection,
+    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, Sections, SolverSection,
     StageTimings,
 };
 
 /// A command that maps a mesh and writes the map.
-pub trait MapCommand {
+pub trait MapJob {
+    /// Runs the job through [`run_map`].
+    ///
+    /// # Errors
+    /// See [`run_map`].
+    fn run(&self) -> Result<Outcome, Failure>
+    where
+        Self: Sized,
+    {
+        run_map(self)
+    }
     /// The subcommand's name (`"disk"`), the report's `command`.
     fn name(&self) -> &'static str;
     /// What the command computes, for messages (`"a disk map"`).
     fn work(&self) -> &'static str;
     /// The input arguments.
-    fn input(&self) -> &InputArgs;
+    fn input(&self) -> &InputOptions;
     /// The output arguments.
-    fn output(&self) -> &OutputArgs;
+    fn output(&self) -> &OutputOptions;
     /// Files the command reads besides the mesh (no output may overwrite them).
     fn other_inputs(&self) -> Vec<&Path> {
         Vec::new()
@@ -60,7 +61,7 @@ pub trait MapCommand {
     fn check_usage(&self) -> Result<(), Failure> {
         Ok(())
     }
-    /// The estimated peak memory (bytes) of [`MapCommand::solve`] on `mesh`, from the
+    /// The estimated peak memory (bytes) of [`MapJob::solve`] on `mesh`, from the
     /// library's model.
     fn peak_bytes(&self, mesh: &TriMesh) -> u64;
     /// Computes the map, its metrics and its report sections.
@@ -85,7 +86,7 @@ pub struct Solved {
     /// The report's `param` object, for commands that read a map.
     pub param: Option<ParamInfo>,
     /// Top-level report sections of the command (`factorization`, `circle_domain`).
-    pub sections: Map<String, Value>,
+    pub sections: Sections,
     /// The report's `metrics` object.
     pub metrics: MetricsSection,
     /// Timings of the solve: `read` holds the reading of other inputs (a map file), which
@@ -97,7 +98,7 @@ pub struct Solved {
     /// adds).
     pub summary: String,
     /// Where this result lands for the `--png` pictures when it differs from the
-    /// command's [`MapCommand::picture_domain`] (`global --topology-opt` returning the
+    /// command's [`MapJob::picture_domain`] (`global --topology-opt` returning the
     /// starting sphere map: drawn as `sphere` draws it); `None`: the command's.
     pub picture_domain: Option<PictureDomain>,
 }
@@ -145,7 +146,7 @@ pub struct Outcome {
 ///
 /// # Errors
 /// Every [`Failure`] of the stages; nothing is written when any stage fails.
-pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
+pub fn run_map(cmd: &dyn MapJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let (input_args, output) = (cmd.input(), cmd.output());
     cmd.check_usage()?;
@@ -225,9 +226,9 @@ pub fn run_map(cmd: &dyn MapCommand) -> Result<Outcome, Failure> {
 /// it on arrays; `--strict` is the caller's (see [`Solved::strict_violation`]).
 ///
 /// # Errors
-/// The memory check's refusal and every failure of [`MapCommand::solve`].
+/// The memory check's refusal and every failure of [`MapJob::solve`].
 pub fn solve_and_report(
-    cmd: &dyn MapCommand,
+    cmd: &dyn MapJob,
     input: &Input,
     memory: MemoryCheck,
     read_ms: f64,
@@ -266,6 +267,38 @@ pub fn solve_and_report(
         repairs: input.repairs.as_ref().map(RepairsReport::new),
         timings_ms: timings,
     };
+    Ok((solved, report))
+}
+
+/// Runs `job` on `input`, a mesh already in memory: the job's usage check, the memory
+/// check against `max_memory` (or the memory available), the solve and the report, with
+/// nothing read or written. `strict` refuses what `--strict` refuses (the message says
+/// `(strict=True)`, as the Python keyword is spelled).
+///
+/// # Errors
+/// The usage check's, the memory check's and the solve's [`Failure`]s.
+pub fn run_in_memory(
+    job: &dyn MapJob,
+    input: &Input,
+    max_memory: Option<u64>,
+    strict: bool,
+) -> Result<(Solved, Report), Failure> {
+    job.check_usage()?;
+    let limit = match max_memory {
+        Some(m) => Some((m, "max_memory")),
+        None => conformap_operators::available_memory(),
+    };
+    // arrays in memory: nothing read, no file text kept
+    let memory = MemoryCheck {
+        read_estimate: 0,
+        estimate: 0,
+        file_bytes: 0,
+        limit,
+    };
+    let (solved, report) = solve_and_report(job, input, memory, 0.0)?;
+    if let Some(why) = solved.strict_violation.as_ref().filter(|_| strict) {
+        return Err(input.fail(Failure::Numerical(format!("{why} (strict=True)"))));
+    }
     Ok((solved, report))
 }
 

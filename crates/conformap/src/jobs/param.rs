@@ -9,9 +9,19 @@ use num_complex::Complex64;
 
 use crate::failure::Failure;
 
+/// Largest `||x| − 1|` of a point taken for a point of the unit sphere: the library's
+/// [`conformap_sphere::MAP_RADIUS_TOL`] (1e-6), which maps stored as f32 (glTF, ~1e-7 of
+/// rounding) meet and which the Möbius optimization accepts.
+pub const UNIT_SPHERE_TOL: f64 = conformap_sphere::MAP_RADIUS_TOL;
+
+/// Whether `p` lies on the unit sphere within [`UNIT_SPHERE_TOL`] (false for NaN).
+pub fn on_unit_sphere(p: &[f64; 3]) -> bool {
+    ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() <= UNIT_SPHERE_TOL
+}
+
 /// A map read by [`read_map_file`]: its positions and, when the file has them, its texture
 /// coordinates (one per vertex, or per face corner for a seamed map).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct MapFile {
     /// The file.
     pub path: PathBuf,
