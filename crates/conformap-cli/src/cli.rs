@@ -7,6 +7,7 @@ use conformap::{BatchJob, BatchTemplate, Choice, Failure, MapJob, Outcome};
 
 use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
+use crate::commands::flatten::FlattenArgs;
 use crate::commands::{
     global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs,
 };
@@ -32,6 +33,10 @@ pub enum Command {
     Disk(DiskArgs),
     /// Judge a planar map of a mesh (ours or another tool's).
     Metrics(MetricsArgs),
+    /// Boundary first flattening of a mesh with boundary: a free boundary (lengths kept,
+    /// the least area distortion), a rectangle or polygon with exact corners, a circle, or
+    /// given boundary scale factors or angles.
+    Flatten(FlattenArgs),
     /// Conformal map of a closed genus-0 mesh onto the unit sphere.
     Sphere(SphereArgs),
     /// Optimal Möbius transformation of a disk or sphere map (uniformity or emphasized area).
@@ -42,7 +47,8 @@ pub enum Command {
     /// Draw a map of a mesh (ours or another tool's): the surface with a checkerboard, the
     /// flat map coloured by distortion, or the angle-distortion histogram.
     Render(RenderArgs),
-    /// Run `disk` or `sphere` over many meshes: one JSON line per input, a summary line.
+    /// Run `disk`, `sphere`, `global` or `flatten` over many meshes: one JSON line per
+    /// input, a summary line.
     Batch(BatchArgs),
     /// Morph through two or more disk-like surfaces with landmarks (CEM §6): S1's mesh at
     /// every frame, on each key surface at its key frame.
@@ -59,6 +65,7 @@ impl Command {
             Self::Info(args) => args.to_job().run(),
             Self::Metrics(args) => args.to_job().run(),
             Self::Disk(args) => args.to_job().run(),
+            Self::Flatten(args) => args.to_job().run(),
             Self::Sphere(args) => args.to_job().run(),
             Self::Mobius(args) => args.to_job().run(),
             Self::Global(args) => args.to_job().run(),
@@ -93,6 +100,7 @@ pub fn batch_job(args: &BatchArgs) -> Result<BatchJob, Failure> {
         Command::Disk(a) => BatchTemplate::Disk(a.to_job()),
         Command::Sphere(a) => BatchTemplate::Sphere(a.to_job()),
         Command::Global(a) => BatchTemplate::Global(a.to_job()),
+        Command::Flatten(a) => BatchTemplate::Flatten(a.to_job()),
         _ => return Err(Failure::Usage(format!("`{name}` cannot run in a batch"))),
     };
     let mut job = BatchJob::new(template, &args.out_dir, args.inputs.clone()).with_jobs(args.jobs);

@@ -174,7 +174,15 @@ impl From<conformap_disk::DiskError> for Failure {
                 ),
             ),
             E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
-            E::Fill(_) => Self::BadInput(e.to_string(), None),
+            E::UnknownBoundary { .. } => Self::Usage(e.to_string()),
+            E::Fill(_)
+            | E::VertexOutOfRange { .. }
+            | E::NotOnBoundary { .. }
+            | E::MissingBoundaryValue { .. }
+            | E::NonFiniteBoundaryValue { .. }
+            | E::BadCorners { .. }
+            | E::TurningSum { .. }
+            | E::BoundaryFile { .. } => Self::BadInput(e.to_string(), None),
             other => Self::Numerical(other.to_string()),
         }
     }

@@ -59,7 +59,7 @@ pub use batch::{BatchCommand, BatchJob, BatchTemplate};
 pub use choice::{Choice, UnknownChoice};
 pub use failure::Failure;
 pub use jobs::{
-    disk::DiskJob, global::GlobalJob, info::InfoJob, metrics::MetricsJob, mobius::MobiusJob,
+    disk::DiskJob, flatten::FlattenJob, global::GlobalJob, info::InfoJob, metrics::MetricsJob, mobius::MobiusJob,
     morph::MorphJob, render::RenderJob, sphere::SphereJob,
 };
 pub use pipeline::{run_in_memory, run_map, InputOptions, MapJob, Outcome, OutputOptions, Solved};

@@ -50,6 +50,10 @@ pub struct Sections {
     /// The one sparse factorization of the solve (`disk`, `global`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub factorization: Option<FactorizationSection>,
+    /// The boundary first flattening (`flatten`): boundary mode, corners, the curve's
+    /// closing, the boundary scale factors, overlap.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flatten: Option<crate::jobs::flatten::FlattenSection>,
     /// The holomorphic form, its periods, zeros and seams (`global`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub global: Option<Value>,

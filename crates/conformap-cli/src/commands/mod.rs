@@ -3,6 +3,7 @@
 
 pub mod batch;
 pub mod disk;
+pub mod flatten;
 pub mod global;
 pub mod info;
 pub mod metrics;

@@ -27,7 +27,7 @@ use serde_json::{json, Value};
 
 use crate::batch::inputs::{collect_inputs, BatchInput};
 use crate::failure::Failure;
-use crate::jobs::{disk::DiskJob, global::GlobalJob, sphere::SphereJob};
+use crate::jobs::{disk::DiskJob, flatten::FlattenJob, global::GlobalJob, sphere::SphereJob};
 use crate::pipeline::context::{self, MemoryBudget, RunContext};
 use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, OutputOptions};
 use crate::report::ms_since;
@@ -43,6 +43,8 @@ crate::choice! {
         Sphere = "sphere",
         /// `conformap global` (surfaces with handles or several boundary loops; seamed outputs).
         Global = "global",
+        /// `conformap flatten` (boundary first flattening: free boundary by default).
+        Flatten = "flatten",
     }
 }
 
@@ -56,6 +58,8 @@ pub enum BatchTemplate {
     Sphere(SphereJob),
     /// A global map.
     Global(GlobalJob),
+    /// A boundary first flattening.
+    Flatten(FlattenJob),
 }
 
 impl BatchTemplate {
@@ -66,6 +70,7 @@ impl BatchTemplate {
             BatchCommand::Disk => Self::Disk(DiskJob::new(input, output)),
             BatchCommand::Sphere => Self::Sphere(SphereJob::new(input, output)),
             BatchCommand::Global => Self::Global(GlobalJob::new(input, output)),
+            BatchCommand::Flatten => Self::Flatten(FlattenJob::new(input, output)),
         }
     }
 
@@ -75,6 +80,7 @@ impl BatchTemplate {
             Self::Disk(j) => j,
             Self::Sphere(j) => j,
             Self::Global(j) => j,
+            Self::Flatten(j) => j,
         }
     }
 
@@ -85,6 +91,7 @@ impl BatchTemplate {
             Self::Disk(j) => (&mut j.input, &mut j.output),
             Self::Sphere(j) => (&mut j.input, &mut j.output),
             Self::Global(j) => (&mut j.input, &mut j.output),
+            Self::Flatten(j) => (&mut j.input, &mut j.output),
         };
         *i = input;
         *o = output;

@@ -7,6 +7,7 @@
 pub mod converged;
 pub mod disk;
 pub mod disk_holes;
+pub mod flatten;
 pub mod global;
 pub mod global_solved;
 pub mod global_topology;
