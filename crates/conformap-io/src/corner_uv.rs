@@ -12,6 +12,7 @@ use crate::error::{IoError, WriteProblem};
 use crate::gltffile::encode_gltf;
 use crate::loaded::Format;
 use crate::objfile::encode_obj_with_corner_uv;
+use crate::plyfile::{encode_ply, PlyUv};
 
 /// Texture coordinates per face corner: corner `k` of face `f` has
 /// `texcoords[faces[f][k]]`. A vertex may have different coordinates in different faces
@@ -152,5 +153,11 @@ pub fn write_mesh_with_corner_uv(
                 .map_err(bad)?;
             write_atomically(path, &bytes)
         }
+        Format::Ply => {
+            crate::api::check_ply_size(mesh.num_vertices()).map_err(bad)?;
+            let bytes = encode_ply(mesh.positions(), mesh.faces(), PlyUv::PerCorner(uv));
+            write_atomically(path, &bytes)
+        }
+        other => Err(bad(crate::api::no_texture_coordinates(other))),
     }
 }

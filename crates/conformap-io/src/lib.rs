@@ -52,20 +52,31 @@ mod api;
 mod atomic;
 mod coincident;
 mod corner_uv;
+mod cursor;
 mod error;
 mod frames;
+mod freesurfer;
+mod gifti;
 mod gltffile;
 mod loaded;
 mod objfile;
+mod offfile;
+mod plyfile;
 mod raw;
+mod stlfile;
 
-pub use api::{read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_uv};
+pub use api::{
+    read_mesh, read_mesh_from_bytes, write_flat, write_flat_like, write_mesh_with_uv,
+    write_vertex_data, SPHERE_RADIUS, UNIT_SPHERE_TOLERANCE,
+};
 pub use coincident::{coincident_vertices, weld_coincident, Welded};
 pub use corner_uv::{write_mesh_with_corner_uv, CornerUv};
-pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
+pub use error::{IoError, ObjProblem, Origin, Place, UvProblem, WriteProblem};
 pub use frames::ObjFrames;
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
-pub use loaded::{Format, LoadedMesh, SourceInfo, VertexText, NO_VERTEX};
+pub use loaded::{
+    CoordinateTransform, Format, LoadedMesh, SourceInfo, SurfaceMetadata, VertexText, NO_VERTEX,
+};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
 
 /// Peak memory of reading a mesh file, per byte of the file (the bytes, the text the OBJ

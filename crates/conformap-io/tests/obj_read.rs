@@ -286,7 +286,8 @@ fn bad_fixtures_give_the_specific_error_and_line() {
         (
             3,
             ObjProblem::BadNumber {
-                keyword: "v".into()
+                keyword: "v".into(),
+                text: "O.5".into(),
             }
         )
     );
@@ -345,8 +346,9 @@ fn hostile_text_is_an_error_not_a_panic() {
 
 #[test]
 fn unknown_extension_and_missing_file() {
+    // neither the extension nor the first bytes name a mesh format
     assert!(matches!(
-        read_mesh("mesh.stl"),
+        read_mesh(fixture("README.md")),
         Err(IoError::UnknownFormat { .. })
     ));
     assert!(matches!(
