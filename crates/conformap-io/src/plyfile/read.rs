@@ -241,6 +241,10 @@ fn read_vertices(
     let uv = UV_NAMES
         .iter()
         .find_map(|(u, v)| Some((scalar_at(u)?, scalar_at(v)?)));
+    if let (Body::Binary(c), Some(stride)) = (&mut *body, e.stride()) {
+        fixed_vertices(e, c, stride, [x, y, z], uv, parts)?;
+        return Ok(());
+    }
     let mut positions = Vec::with_capacity(e.count);
     let mut uvs = uv.map(|_| Vec::with_capacity(e.count));
     let mut row = vec![0.0; e.props.len()];
@@ -267,6 +271,89 @@ fn read_vertices(
     Ok(())
 }
 
+/// The vertices of a binary element of scalars only: one slice, read row by row.
+fn fixed_vertices(
+    e: &Element,
+    c: &mut Cursor<'_>,
+    stride: usize,
+    xyz: [usize; 3],
+    uv: Option<(usize, usize)>,
+    parts: &mut Parts,
+) -> Result<(), IoError> {
+    // each property's byte offset in a row, and its type
+    let mut at = Vec::with_capacity(e.props.len());
+    let mut offset = 0;
+    for p in &e.props {
+        if let Kind::Scalar(s) = p.kind {
+            at.push((offset, s));
+            offset += s.size();
+        }
+    }
+    let len = e.count.saturating_mul(stride);
+    let data = c.take(len, || "vertex element".to_string())?;
+    let big = c.big_endian;
+    let get = |row: &[u8], i: usize| {
+        let (o, s) = at[i];
+        s.value(&row[o..], big)
+    };
+    parts.positions = data
+        .chunks_exact(stride.max(1))
+        .map(|row| xyz.map(|i| get(row, i)))
+        .collect();
+    parts.uv = uv.map(|(u, v)| {
+        data.chunks_exact(stride.max(1))
+            .map(|row| Some([get(row, u), get(row, v)]))
+            .collect()
+    });
+    Ok(())
+}
+
+/// The faces of a binary element whose only property is the index list: read straight
+/// from the bytes.
+fn list_only_faces(
+    e: &Element,
+    c: &mut Cursor<'_>,
+    (count_type, index_type): (Scalar, Scalar),
+    parts: &mut Parts,
+) -> Result<(), IoError> {
+    let (cs, is) = (count_type.size(), index_type.size());
+    let big = c.big_endian;
+    let valid = |x: f64| x >= 0.0 && x.fract() == 0.0 && x <= f64::from(u32::MAX - 1);
+    for k in 0..e.count {
+        let name = || format!("face {k}");
+        let n = count_type.value(c.take(cs, name)?, big);
+        if !(valid(n) && n >= 3.0) {
+            c.pos -= cs;
+            let problem = format!("{n} corner(s); a face needs at least 3");
+            return Err(c.error(name(), problem, CORRUPT_HINT));
+        }
+        let n = n as usize;
+        let bytes = c.take(n.saturating_mul(is), name)?;
+        let mut corners = bytes.chunks_exact(is).map(|b| index_type.value(b, big));
+        let index = |x: f64| valid(x).then_some(x as u32);
+        let mut bad = None;
+        let mut next = || {
+            let x = corners.next().unwrap_or(f64::NAN);
+            index(x).unwrap_or_else(|| {
+                bad.get_or_insert(x);
+                0
+            })
+        };
+        let (first, mut prev) = (next(), next());
+        for _ in 2..n {
+            let cur = next();
+            parts.faces.push([first, prev, cur]);
+            parts.face_of.push(k);
+            prev = cur;
+        }
+        if let Some(x) = bad {
+            return Err(c.error(name(), format!("{x} is not a vertex index"), CORRUPT_HINT));
+        }
+        parts.polygons |= n > 3;
+    }
+    Ok(())
+}
+
 fn read_faces(e: &Element, body: &mut Body<'_>, parts: &mut Parts) -> Result<(), IoError> {
     let list_at = |names: &[&str]| {
         e.find(names)
@@ -282,6 +369,11 @@ fn read_faces(e: &Element, body: &mut Body<'_>, parts: &mut Parts) -> Result<(),
     let texcoord = list_at(&["texcoord"]);
     parts.faces.reserve(e.count);
     parts.face_of.reserve(e.count);
+    if let (Body::Binary(c), [only]) = (&mut *body, e.props.as_slice()) {
+        if let Kind::List(cs, is) = only.kind {
+            return list_only_faces(e, c, (cs, is), parts);
+        }
+    }
     let mut corners: Vec<u32> = Vec::new();
     let mut tex: Vec<f64> = Vec::new();
     let mut uv = texcoord.map(|_| CornerUv::default());
