@@ -6,10 +6,10 @@
 //! ```
 //!
 //! Writes `OUT_DIR/<stem>.bin.ply` (binary, double), `<stem>.ascii.ply`, `<stem>.f32.ply`
-//! (binary float32, the common scanner layout), `<stem>.stl` (binary), `<stem>.ascii.stl`
-//! and `<stem>.off`, then prints the fastest of nine runs of `read_raw_mesh` (parse) and
-//! `read_mesh` (parse and validation) of each, with MB/s (1 MB = 10⁶ bytes of the file
-//! read).
+//! (binary float32, the common scanner layout), `<stem>.stl` (binary), `<stem>.ascii.stl`,
+//! `<stem>.off`, `<stem>.surf.gii` (GIfTI, gzip) and `lh.<stem>.white` (FreeSurfer), then
+//! prints the fastest of nine runs of `read_raw_mesh` (parse) and `read_mesh` (parse and
+//! validation) of each, with MB/s (1 MB = 10⁶ bytes of the file read).
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -96,7 +96,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = conformap_io::read_mesh(&obj)?.mesh;
     let bin = dir.join(format!("{stem}.bin.ply"));
     conformap_io::write_flat(&bin, mesh.positions(), mesh.faces())?;
-    let mut files = vec![Path::new(&obj).to_path_buf(), bin];
+    let gii = dir.join(format!("{stem}.surf.gii"));
+    conformap_io::write_flat(&gii, mesh.positions(), mesh.faces())?;
+    let fs = dir.join(format!("lh.{stem}.white"));
+    conformap_io::write_flat(&fs, mesh.positions(), mesh.faces())?;
+    let mut files = vec![Path::new(&obj).to_path_buf(), bin, gii, fs];
     for (ext, bytes) in conversions(mesh.positions(), mesh.faces()) {
         let path = dir.join(format!("{stem}.{ext}"));
         std::fs::write(&path, bytes)?;

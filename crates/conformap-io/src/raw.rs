@@ -271,7 +271,9 @@ pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
     // a FreeSurfer surface (`lh.white`) or a file named otherwise is known by its magic
     let format = match named {
         Ok(format) => format,
-        Err(e) => Format::sniff(&bytes).ok_or(e)?,
+        Err(e) => Format::sniff(&bytes)
+            .or_else(|| freesurfer_name(path))
+            .ok_or(e)?,
     };
     match format {
         Format::Obj => {
@@ -286,6 +288,13 @@ pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
         }
         other => read_other_raw(&bytes, path, other),
     }
+}
+
+/// FreeSurfer for a name like `lh.mysurf` or `rh.x` (whose extension names no format): its
+/// reader then says what is wrong with the magic.
+fn freesurfer_name(path: &Path) -> Option<Format> {
+    let name = path.file_name()?.to_str()?;
+    (name.starts_with("lh.") || name.starts_with("rh.")).then_some(Format::FreeSurfer)
 }
 
 /// The readers of PLY, STL, OFF, GIfTI and FreeSurfer surfaces.
