@@ -202,6 +202,13 @@ fn corrupt_gifti_names_the_array() {
     assert_eq!(place, Place::DataArray(0));
     assert!(msg.contains("bytes"), "{msg}");
 
+    // a gzip array claiming far more than its text can inflate to is refused unread
+    let mut arrays = square_arrays("GZipBase64Binary", false, false);
+    arrays[0].2 = &[1_000_000_000, 3];
+    let (place, msg, _) = malformed(&gifti(&arrays), Format::Gifti);
+    assert_eq!(place, Place::DataArray(0));
+    assert!(msg.contains("more than the"), "{msg}");
+
     let arrays = square_arrays("ASCII", false, false);
     let (place, msg, hint) = malformed(&gifti(&arrays[..1]), Format::Gifti);
     assert_eq!(place, Place::File);

@@ -10,8 +10,11 @@ use crate::cursor::{malformed, CORRUPT_HINT};
 use crate::error::{IoError, Place};
 use crate::loaded::Format;
 
-/// The most a zlib stream can inflate per compressed byte (deflate's limit is 1032:1).
-const MAX_INFLATE_RATIO: usize = 1032;
+/// The most a GIfTI array may inflate per compressed byte. Deflate allows 1032:1, but
+/// float32 points and int32 triangles of real surfaces compress about 1.5–4:1; an array
+/// that claims more is refused before inflating (a gzip bomb, or wrong dimensions), which
+/// bounds what a file can make the reader allocate.
+const MAX_INFLATE_RATIO: usize = 64;
 
 /// A `<DataArray>` as the XML gives it.
 #[derive(Debug, Clone, Default)]
@@ -74,7 +77,13 @@ pub(crate) fn decode_values(
         )
     };
     let rows = check_dims(a, columns).map_err(|p| bad(p, CORRUPT_HINT))?;
-    let count = rows * columns;
+    let too_large = || {
+        bad(
+            format!("dimensions ({rows}, {columns}) are too large"),
+            CORRUPT_HINT,
+        )
+    };
+    let count = rows.checked_mul(columns).ok_or_else(too_large)?;
     let values = match a.encoding.as_str() {
         "ASCII" => ascii(&a.data, count).map_err(|p| bad(p, CORRUPT_HINT))?,
         "Base64Binary" | "GZipBase64Binary" => {
@@ -84,7 +93,8 @@ pub(crate) fn decode_values(
                     CORRUPT_HINT,
                 )
             })?;
-            let bytes = binary(a, count * size).map_err(|p| bad(p, CORRUPT_HINT))?;
+            let len = count.checked_mul(size).ok_or_else(too_large)?;
+            let bytes = binary(a, len).map_err(|p| bad(p, CORRUPT_HINT))?;
             let big = a.endian == "BigEndian";
             bytes
                 .chunks_exact(size)
@@ -175,7 +185,7 @@ fn binary(a: &DataArray, len: usize) -> Result<Vec<u8>, String> {
         .decode(&text)
         .map_err(|e| format!("the data is not valid base64 ({e})"))?;
     let bytes = if gzip {
-        let mut out = Vec::with_capacity(len);
+        let mut out = Vec::with_capacity(len.min(raw.len().saturating_mul(8)));
         flate2::read::ZlibDecoder::new(raw.as_slice())
             .take(len as u64 + 1)
             .read_to_end(&mut out)
