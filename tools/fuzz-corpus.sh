@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Seeds the cargo-fuzz corpus of one target from the fixtures (fuzz/corpus/TARGET, ignored
 # by git). Idempotent: existing corpus files are kept.
-#   tools/fuzz-corpus.sh obj|gltf|glb|disk|param
+#   tools/fuzz-corpus.sh obj|gltf|glb|disk|param|ply|stl|off|gifti|freesurfer
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-target="${1:?usage: tools/fuzz-corpus.sh obj|gltf|glb|disk|param}"
+target="${1:?usage: tools/fuzz-corpus.sh obj|gltf|glb|disk|param|ply|stl|off|gifti|freesurfer}"
 dir="$root/fuzz/corpus/$target"
 mkdir -p "$dir"
 fx="$root/fixtures"
@@ -24,7 +24,29 @@ make_gltf_seeds() {
     rm -rf "$tmp"
 }
 
+# Small PLY, STL, OFF, GIfTI and FreeSurfer seeds: small fixtures converted by
+# conformap-io's formats_speed example (binary and ASCII where the format has both).
+make_format_seeds() {
+    local tmp
+    tmp="$(mktemp -d)"
+    (cd "$root" && cargo build -q --release -p conformap-io --example formats_speed) || return 0
+    for m in "$fx/eightsim.obj" "$fx/bad/two_components.obj"; do
+        "$root/target/release/examples/formats_speed" "$m" "$tmp" >/dev/null 2>&1 || true
+    done
+    case "$target" in
+    ply) cp "$tmp"/*.ply "$dir/" ;;
+    stl) cp "$tmp"/*.stl "$dir/" ;;
+    off) cp "$tmp"/*.off "$dir/" ;;
+    gifti) cp "$tmp"/*.gii "$dir/" ;;
+    freesurfer) cp "$tmp"/*.white "$dir/" ;;
+    esac
+    rm -rf "$tmp"
+}
+
 case "$target" in
+ply | stl | off | gifti | freesurfer)
+    make_format_seeds
+    ;;
 obj)
     cp "$fx"/bad/*.obj "$dir/"
     cp "$fx/woody.obj" "$dir/"
@@ -56,7 +78,7 @@ param)
     cp "$fx/bad/uv_seam.obj" "$dir/"
     ;;
 *)
-    echo "unknown target: $target (expected obj, gltf, glb, disk or param)" >&2
+    echo "unknown target: $target (expected obj, gltf, glb, disk, param, ply, stl, off, gifti or freesurfer)" >&2
     exit 2
     ;;
 esac

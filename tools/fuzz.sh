@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs one cargo-fuzz target for SECONDS seconds and prints its run count.
-#   tools/fuzz.sh obj|gltf|glb|disk|param SECONDS [more libFuzzer flags...]
+#   tools/fuzz.sh obj|gltf|glb|disk|param|ply|stl|off|gifti|freesurfer SECONDS [more libFuzzer flags...]
 # Needs the nightly toolchain (`cargo +nightly fuzz`); installs cargo-fuzz if missing.
 # FUZZ_SANITIZER=none|address (default address); FUZZ_JOBS=N runs N jobs in parallel (the
 # run count is then in fuzz/fuzz-*.log).
@@ -8,7 +8,7 @@
 # in fuzz/artifacts/TARGET (both ignored by git): turn each into a regression test in the
 # crate that owns the bug, then delete it.
 set -euo pipefail
-usage="usage: tools/fuzz.sh obj|gltf|glb|disk|param SECONDS [libFuzzer flags...]"
+usage="usage: tools/fuzz.sh obj|gltf|glb|disk|param|ply|stl|off|gifti|freesurfer SECONDS [libFuzzer flags...]"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 target="${1:?$usage}"
 secs="${2:?$usage}"
@@ -16,6 +16,7 @@ shift 2
 case "$target" in
 obj | disk | param) dict=obj.dict; max_len=16384 ;;
 gltf | glb) dict=gltf.dict; max_len=131072 ;;
+ply | stl | off | gifti | freesurfer) dict=formats.dict; max_len=131072 ;;
 *)
     echo "$usage" >&2
     exit 2

@@ -5,9 +5,9 @@ use std::ffi::OsString;
 use clap::{Parser, Subcommand};
 use conformap::{BatchJob, BatchTemplate, Choice, Failure, MapJob, Outcome};
 
+use crate::commands::flatten::FlattenArgs;
 use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
-use crate::commands::flatten::FlattenArgs;
 use crate::commands::{
     global::GlobalArgs, mobius::MobiusArgs, morph::MorphArgs, sphere::SphereArgs,
 };

@@ -8,18 +8,30 @@ use conformap_mesh::TriMesh;
 use crate::atomic::{write_atomically, write_encoded_atomically};
 use crate::corner_uv::CornerUv;
 use crate::error::{IoError, WriteProblem};
+use crate::freesurfer::encode_freesurfer;
+use crate::gifti::{encode_gifti_data, encode_gifti_surface};
 use crate::gltffile::encode_gltf;
 use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 use crate::objfile::{encode_obj, encode_obj_with_corner_uv, encode_obj_with_uv};
+use crate::plyfile::{encode_ply, PlyUv};
 use crate::raw::{read_raw_mesh, read_raw_mesh_from_bytes};
 
-/// Reads a mesh from an `.obj`, `.gltf` or `.glb` file (chosen by extension).
+/// Reads a mesh from an `.obj`, `.gltf`, `.glb`, `.ply`, `.stl`, `.off` or `.gii` file or
+/// a FreeSurfer surface (chosen by extension; a file whose extension names no format, such
+/// as `lh.white`, by its first bytes: see [`Format::sniff`]).
 ///
 /// OBJ: polygons are fan-triangulated; `vt`, `vn`, groups, objects and materials are
 /// tolerated (no `.mtl` is loaded); several objects are merged with the file's global
 /// vertex numbering. glTF/GLB: every triangle primitive of the default scene (node
 /// transforms applied; without scenes, every mesh untransformed), with bit-identical
 /// positions welded (see [`SourceInfo::weld_map`]); external `.bin` files and data URIs work.
+/// PLY: the `vertex` element's `x y z` (and `texture_u texture_v`, `u v` or `s t`), the
+/// `face` element's `vertex_indices` (polygons fan-triangulated), per-corner `texcoord`;
+/// other elements skipped. STL: facets welded by bit-identical position, vertices in order
+/// of first appearance ([`SourceInfo::weld_map`]). OFF: vertex and face lines (polygons
+/// fan-triangulated). GIfTI: the point set and triangle arrays (every encoding and byte
+/// order), transforms in [`SourceInfo::surface`]. FreeSurfer: the triangle surface, its
+/// created-by line and volume geometry in [`SourceInfo::surface`].
 ///
 /// # Errors
 /// [`IoError`] naming the file and the line (OBJ) or mesh, primitive and accessor (glTF);
@@ -98,11 +110,42 @@ pub fn write_mesh_with_uv(
             };
             write_atomically(path, &bytes.map_err(bad)?)
         }
+        Format::Ply => {
+            check_ply_size(mesh.num_vertices()).map_err(bad)?;
+            let bytes = encode_ply(mesh.positions(), mesh.faces(), PlyUv::PerVertex(uv));
+            write_atomically(path, &bytes)
+        }
+        other => Err(bad(no_texture_coordinates(other))),
     }
 }
 
+/// The problem of writing texture coordinates to a format that has none.
+pub(crate) fn no_texture_coordinates(format: Format) -> WriteProblem {
+    WriteProblem::NotWritable {
+        format: format.extension(),
+        what: "texture coordinates (write the mesh with its map as .obj, .ply, .gltf or \
+               .glb, and the map itself with --flat as .surf.gii or a FreeSurfer surface)",
+    }
+}
+
+/// PLY indices are written as `int`.
+pub(crate) fn check_ply_size(vertices: usize) -> Result<(), WriteProblem> {
+    if vertices > i32::MAX as usize {
+        return Err(WriteProblem::TooLarge);
+    }
+    Ok(())
+}
+
 /// Writes points and triangles with no texture coordinates: a flat map `(u, v, 0)`, points
-/// on the unit sphere, or any mesh. Format by extension as in [`write_mesh_with_uv`].
+/// on the unit sphere, or any mesh. Format by extension as in [`write_mesh_with_uv`], and
+/// also `.ply` (binary, double), `.surf.gii` (GIfTI, float32) and FreeSurfer surfaces
+/// (`lh.sphere`, float32).
+///
+/// GIfTI and FreeSurfer outputs follow the field's conventions: points that all lie on the
+/// unit sphere (a sphere map; |‖p‖ − 1| ≤ [`UNIT_SPHERE_TOLERANCE`]) are written at radius
+/// 100, as FreeSurfer's `?h.sphere`; a flat map is written as it is given, `(u, v, 0)`.
+/// Triangles and vertex order are the caller's (the input's). See [`write_flat_like`] to
+/// keep the input file's transforms or volume geometry.
 ///
 /// # Errors
 /// [`IoError::BadWriteInput`] if a face index is out of range or a coordinate is not
@@ -124,6 +167,28 @@ pub fn write_flat(
     points: &[[f64; 3]],
     faces: &[[u32; 3]],
 ) -> Result<(), IoError> {
+    write_flat_like(path, points, faces, None)
+}
+
+/// How far from 1 the norm of every point may be for [`write_flat`] to take the points
+/// for a sphere map (and write GIfTI and FreeSurfer surfaces at radius 100).
+pub const UNIT_SPHERE_TOLERANCE: f64 = 1e-9;
+
+/// FreeSurfer's sphere radius (`?h.sphere`), which GIfTI and FreeSurfer sphere maps get.
+pub const SPHERE_RADIUS: f64 = 100.0;
+
+/// [`write_flat`], keeping what `source` says about the input surface when the output is
+/// of the same kind: a GIfTI input's coordinate transforms go into a GIfTI output, a
+/// FreeSurfer input's volume geometry into a FreeSurfer output.
+///
+/// # Errors
+/// As [`write_flat`].
+pub fn write_flat_like(
+    path: impl AsRef<Path>,
+    points: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    source: Option<&SourceInfo>,
+) -> Result<(), IoError> {
     let path = path.as_ref();
     let (format, bad) = write_target(path)?;
     for (face, f) in faces.iter().enumerate() {
@@ -136,12 +201,35 @@ pub fn write_flat(
         }
     }
     check_finite(points.iter().map(|p| p.as_slice())).map_err(bad)?;
+    let meta = source
+        .filter(|s| s.format == format)
+        .and_then(|s| s.surface.as_ref());
     match format {
         Format::Obj => write_encoded_atomically(path, &encode_obj(points, faces)),
         Format::Gltf | Format::Glb => {
             let bytes = encode_gltf(format == Format::Glb, points, None, faces).map_err(bad)?;
             write_atomically(path, &bytes)
         }
+        Format::Ply => {
+            check_ply_size(points.len()).map_err(bad)?;
+            write_atomically(path, &encode_ply(points, faces, PlyUv::None))
+        }
+        Format::Gifti => {
+            let scaled = sphere_at_radius_100(points);
+            let bytes = encode_gifti_surface(scaled.as_deref().unwrap_or(points), faces, meta);
+            write_atomically(path, &bytes)
+        }
+        Format::FreeSurfer => {
+            let scaled = sphere_at_radius_100(points);
+            let bytes =
+                encode_freesurfer(scaled.as_deref().unwrap_or(points), faces, meta).map_err(bad)?;
+            write_atomically(path, &bytes)
+        }
+        Format::Stl | Format::Off => Err(bad(WriteProblem::NotWritable {
+            format: format.extension(),
+            what: "output from conformap (it reads them only): write .obj, .ply, .gltf, \
+                   .glb, .surf.gii or a FreeSurfer surface",
+        })),
     }
 }
 
@@ -207,7 +295,70 @@ pub fn write_mesh_with_corner_uv(
                 .map_err(bad)?;
             write_atomically(path, &bytes)
         }
+        Format::Ply => {
+            check_ply_size(mesh.num_vertices()).map_err(bad)?;
+            let bytes = encode_ply(mesh.positions(), mesh.faces(), PlyUv::PerCorner(uv));
+            write_atomically(path, &bytes)
+        }
+        other => Err(bad(no_texture_coordinates(other))),
     }
+}
+
+/// The points scaled to radius 100 if they all lie on the unit sphere; `None` otherwise.
+fn sphere_at_radius_100(points: &[[f64; 3]]) -> Option<Vec<[f64; 3]>> {
+    let on_sphere = |p: &[f64; 3]| {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        (r - 1.0).abs() <= UNIT_SPHERE_TOLERANCE
+    };
+    (!points.is_empty() && points.iter().all(on_sphere)).then(|| {
+        points
+            .iter()
+            .map(|p| p.map(|x| x * SPHERE_RADIUS))
+            .collect()
+    })
+}
+
+/// Writes per-vertex values (angle distortion, log area ratio...) as a GIfTI data file
+/// (`.shape.gii` or `.func.gii`) that neuroimaging viewers load as overlays on the surface:
+/// one float32 array per column, in the surface's vertex order, named by its metadata
+/// `Name`.
+///
+/// # Errors
+/// [`IoError::BadWriteInput`] if the name does not end in `.gii`, there is no column, or
+/// the columns differ in length; [`IoError::Write`] if the file cannot be written.
+///
+/// # Examples
+/// ```
+/// let dir = std::env::temp_dir().join(format!("conformap-io-data-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let out = dir.join("lh.quality.shape.gii");
+/// conformap_io::write_vertex_data(&out, &[("angle_distortion_deg", &[0.5, 1.0, 2.0])])?;
+/// assert!(std::fs::read_to_string(&out).unwrap().contains("angle_distortion_deg"));
+/// # std::fs::remove_dir_all(&dir).unwrap();
+/// # Ok::<(), conformap_io::IoError>(())
+/// ```
+pub fn write_vertex_data(
+    path: impl AsRef<Path>,
+    columns: &[(&str, &[f64])],
+) -> Result<(), IoError> {
+    let path = path.as_ref();
+    let (format, bad) = write_target(path)?;
+    if format != Format::Gifti {
+        return Err(bad(WriteProblem::NotWritable {
+            format: format.extension(),
+            what: "per-vertex data arrays (name the file .shape.gii or .func.gii)",
+        }));
+    }
+    let Some((_, first)) = columns.first() else {
+        return Err(bad(WriteProblem::Empty));
+    };
+    if let Some((_, c)) = columns.iter().find(|(_, c)| c.len() != first.len()) {
+        return Err(bad(WriteProblem::UvCount {
+            expected: first.len(),
+            found: c.len(),
+        }));
+    }
+    write_atomically(path, &encode_gifti_data(columns))
 }
 
 /// The format of an output `path` (by its extension), and the maker of the

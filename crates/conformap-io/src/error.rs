@@ -30,10 +30,13 @@ pub enum IoError {
         /// What the operating system said.
         source: std::io::Error,
     },
-    /// The file name does not end in `.obj`, `.gltf` or `.glb` (case-insensitive).
-    /// Fix: rename the file or pick an output name with one of those extensions.
+    /// The file name does not end in a mesh extension (`.obj`, `.gltf`, `.glb`, `.ply`,
+    /// `.stl`, `.off`, `.gii`, a FreeSurfer surface name; case-insensitive) and, when
+    /// reading, its first bytes show no known format either. Fix: rename the file or pick
+    /// an output name with one of those extensions.
     #[error(
-        "{}: unknown mesh format (expected a .obj, .gltf or .glb file name)",
+        "{}: unknown mesh format (expected a .obj, .gltf, .glb, .ply, .stl, .off or .gii file, \
+         or a FreeSurfer surface such as lh.white)",
         path.display()
     )]
     UnknownFormat {
@@ -103,6 +106,22 @@ pub enum IoError {
         /// What the user can do about it (see [`IoError::hint`]).
         hint: &'static str,
     },
+    /// A PLY, STL, OFF, GIfTI or FreeSurfer file is malformed or truncated: the message
+    /// names the format, the place ([`Place`]: a line, a byte offset, an element) and what is
+    /// wrong. Fix: the hint says what to do; usually, export the file again.
+    #[error("{}: {} {place}: {problem}", path.display(), format_name(*format))]
+    Malformed {
+        /// The file.
+        path: PathBuf,
+        /// Its format.
+        format: crate::Format,
+        /// Where in the file.
+        place: Place,
+        /// What is wrong.
+        problem: String,
+        /// What the user can do about it (see [`IoError::hint`]).
+        hint: &'static str,
+    },
     /// The data handed to a writer is inconsistent: see [`WriteProblem`]. Nothing is written.
     /// Fix: this is a caller bug or a non-finite map value; the message names the element.
     #[error("{}: nothing written: {problem}", path.display())]
@@ -131,7 +150,8 @@ impl IoError {
                  is not full"
             }
             Self::UnknownFormat { .. } => {
-                "name the file .obj, .gltf or .glb (by its actual format)"
+                "name the file by its actual format: .obj, .gltf, .glb, .ply, .stl, .off, \
+                 .surf.gii, or lh.white-style for FreeSurfer"
             }
             Self::ObjSyntax { problem, .. } => problem.hint(),
             Self::InvalidMesh { .. } => {
@@ -142,7 +162,11 @@ impl IoError {
                  it as a flat mesh"
             }
             Self::Gltf { .. } => GLTF_HINT,
-            Self::GltfData { hint, .. } => hint,
+            Self::GltfData { hint, .. } | Self::Malformed { hint, .. } => hint,
+            Self::BadWriteInput {
+                problem: WriteProblem::NotWritable { .. },
+                ..
+            } => "pick an output name whose format holds what is written (the message says which)",
             Self::BadWriteInput { .. } => {
                 "this is a bug in the caller (or a non-finite map value): please report it \
                  with the input"
@@ -163,6 +187,15 @@ impl IoError {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Origin {
+    /// An element of a PLY, STL, OFF, GIfTI or FreeSurfer file: `vertex 12` (the file's
+    /// 0-based vertex), `face 7` (PLY/OFF face, before fan triangulation), `facet 9` (STL),
+    /// `triangle 3` (GIfTI, FreeSurfer).
+    Element {
+        /// `vertex`, `face`, `facet` or `triangle`.
+        element: &'static str,
+        /// 0-based index among the file's elements of that kind.
+        index: usize,
+    },
     /// A 1-based line of an OBJ file.
     Line(usize),
     /// A vertex of a glTF primitive (0-based index into its `POSITION` accessor).
@@ -189,6 +222,7 @@ impl fmt::Display for Origin {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Line(line) => write!(f, "line {line}"),
+            Self::Element { element, index } => write!(f, "{element} {index}"),
             Self::GltfVertex {
                 mesh,
                 primitive,
@@ -200,6 +234,52 @@ impl fmt::Display for Origin {
                 triangle,
             } => write!(f, "mesh {mesh}, primitive {primitive}, triangle {triangle}"),
         }
+    }
+}
+
+/// A place in a PLY, STL, OFF, GIfTI or FreeSurfer file, for [`IoError::Malformed`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Place {
+    /// A 1-based line of a text file (PLY header or ASCII body, OFF, ASCII STL, GIfTI XML).
+    Line(usize),
+    /// A byte offset from the start of the file, and the element there if any
+    /// (`vertex 12`, `facet 3`).
+    Byte {
+        /// 0-based byte offset.
+        offset: u64,
+        /// The element being read, e.g. `vertex 12`; empty in a header.
+        element: String,
+    },
+    /// A GIfTI data array (0-based, in file order).
+    DataArray(usize),
+    /// The file as a whole (a missing part, such as a GIfTI file without a triangle array).
+    File,
+}
+
+impl fmt::Display for Place {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Line(line) => write!(f, "line {line}"),
+            Self::Byte { offset, element } if element.is_empty() => write!(f, "byte {offset}"),
+            Self::Byte { offset, element } => write!(f, "byte {offset} ({element})"),
+            Self::DataArray(k) => write!(f, "data array {k}"),
+            Self::File => write!(f, "file"),
+        }
+    }
+}
+
+/// The name of a format in messages.
+fn format_name(format: crate::Format) -> &'static str {
+    use crate::Format as F;
+    match format {
+        F::Obj => "OBJ",
+        F::Gltf | F::Glb => "glTF",
+        F::Ply => "PLY",
+        F::Stl => "STL",
+        F::Off => "OFF",
+        F::Gifti => "GIfTI",
+        F::FreeSurfer => "FreeSurfer surface",
     }
 }
 
@@ -222,11 +302,23 @@ pub enum ObjProblem {
         /// How many values the line has.
         found: usize,
     },
-    /// A `v`, `vt` or `vn` line has a value that is not a number, or `w` = 0.
+    /// A `v`, `vt` or `vn` line has a value that is not a number.
     BadNumber {
         /// `v`, `vt` or `vn`.
         keyword: String,
+        /// The offending text (at most 40 characters).
+        text: String,
     },
+    /// A `v`, `vt` or `vn` value is a number too large for f64 (`1e400`): it would read as
+    /// infinity.
+    NumberOverflow {
+        /// `v`, `vt` or `vn`.
+        keyword: String,
+        /// The number as written (at most 40 characters).
+        text: String,
+    },
+    /// A homogeneous `v x y z w` line has `w = 0` (a point at infinity).
+    ZeroW,
     /// An `f` line has fewer than three corners.
     TooFewCorners {
         /// How many corners the line has.
@@ -275,6 +367,8 @@ impl ObjProblem {
             Self::UnknownStatement { .. }
             | Self::WrongValueCount { .. }
             | Self::BadNumber { .. }
+            | Self::NumberOverflow { .. }
+            | Self::ZeroW
             | Self::TooFewCorners { .. }
             | Self::BadCorner { .. } => {
                 "fix or delete that line of the file (the message quotes what is wrong)"
@@ -293,10 +387,14 @@ impl fmt::Display for ObjProblem {
             Self::WrongValueCount { keyword, found } => {
                 write!(f, "`{keyword}` line has {found} values")
             }
-            Self::BadNumber { keyword } => write!(
+            Self::BadNumber { keyword, text } => {
+                write!(f, "`{keyword}` line: `{text}` is not a number")
+            }
+            Self::NumberOverflow { keyword, text } => write!(
                 f,
-                "`{keyword}` line has a value that is not a number (or w = 0)"
+                "`{keyword}` line: `{text}` overflows (above 1.8e308, the largest f64)"
             ),
+            Self::ZeroW => write!(f, "`v` line has w = 0 (a point at infinity)"),
             Self::TooFewCorners { found } => {
                 write!(f, "face has {found} corner(s); a face needs at least 3")
             }
@@ -410,6 +508,14 @@ pub enum WriteProblem {
     },
     /// More data than the format can index (glTF byte lengths are u32 in GLB).
     TooLarge,
+    /// The output format cannot hold this (texture coordinates in a GIfTI or FreeSurfer
+    /// surface, anything in STL or OFF, data arrays outside GIfTI).
+    NotWritable {
+        /// The format's extension.
+        format: &'static str,
+        /// What it cannot hold, and what to write instead.
+        what: &'static str,
+    },
     /// No vertex or no triangle: glTF accessors cannot be empty.
     Empty,
 }
@@ -442,6 +548,9 @@ impl fmt::Display for WriteProblem {
                 "face {face} refers to texture coordinate {index}, but there are only {count}"
             ),
             Self::TooLarge => write!(f, "the mesh is too large for the format"),
+            Self::NotWritable { format, what } => {
+                write!(f, "a .{format} file cannot hold {what}")
+            }
             Self::Empty => write!(f, "glTF needs at least one vertex and one triangle"),
         }
     }
@@ -532,7 +641,13 @@ mod tests {
             }),
             line(ObjProblem::BadNumber {
                 keyword: "v".into(),
+                text: "x".into(),
             }),
+            line(ObjProblem::NumberOverflow {
+                keyword: "v".into(),
+                text: "1e400".into(),
+            }),
+            line(ObjProblem::ZeroW),
             line(ObjProblem::TooFewCorners { found: 2 }),
             line(ObjProblem::BadCorner { token: "1/".into() }),
             line(ObjProblem::IndexZero { what: "vertex" }),
@@ -567,6 +682,16 @@ mod tests {
                 path: path(),
                 problem: WriteProblem::Empty,
             },
+            IoError::Malformed {
+                path: path(),
+                format: crate::Format::Ply,
+                place: Place::Byte {
+                    offset: 9,
+                    element: "vertex 0".into(),
+                },
+                problem: "truncated".into(),
+                hint: "export the file again; it is cut short or damaged",
+            },
         ]
     }
 
@@ -588,7 +713,7 @@ mod tests {
         assert_eq!(kinds.len(), VARIANTS, "one IoError per variant");
     }
 
-    const VARIANTS: usize = 9;
+    const VARIANTS: usize = 10;
 
     fn variant(e: &IoError) -> usize {
         match e {
@@ -601,6 +726,7 @@ mod tests {
             IoError::Gltf { .. } => 6,
             IoError::GltfData { .. } => 7,
             IoError::BadWriteInput { .. } => 8,
+            IoError::Malformed { .. } => 9,
         }
     }
 }

@@ -1,20 +1,25 @@
-//! Mesh file I/O for conformap: OBJ and glTF/GLB readers and writers with errors that name
-//! the file and line.
+//! Mesh file I/O for conformap: OBJ, glTF/GLB, PLY, STL, OFF, GIfTI and FreeSurfer readers
+//! and writers with errors that name the file and the place in it.
 //!
 //! Depends on `conformap-mesh` (every mesh read passes [`TriMesh::try_new`]), `fast-float2`,
-//! `memchr`, `rayon`, `ryu`, `itoa`, `gltf`, `serde_json` and `thiserror`; never does any
-//! maths on the mesh and never prints.
+//! `memchr`, `rayon`, `ryu`, `itoa`, `gltf`, `serde_json`, `quick-xml`, `base64`, `flate2`
+//! and `thiserror`; never does any maths on the mesh and never prints.
 //!
 //! - [`read_mesh`] / [`read_mesh_from_bytes`]: OBJ (our own parser, in parallel chunks, with
 //!   correctly rounded numbers, line numbers and checked indices), glTF and GLB (via `gltf`, with checked accessors, node
 //!   transforms and welding of seam-split vertices). They return a [`LoadedMesh`]: the
 //!   validated mesh, per-vertex texture coordinates if the file has them, and a
-//!   [`SourceInfo`] mapping mesh vertices and faces back to the file.
+//!   [`SourceInfo`] mapping mesh vertices and faces back to the file. PLY (ASCII and
+//!   binary), STL (welded), OFF, GIfTI surfaces and FreeSurfer surfaces (found by their
+//!   magic when the name has no extension) are read by our own code (GIfTI's XML with
+//!   `quick-xml`); their errors are [`IoError::Malformed`] with a [`Place`].
 //! - [`write_mesh_with_uv`]: the mesh with one texture coordinate per vertex;
 //!   [`write_mesh_with_corner_uv`]: the mesh with a seamed map ([`CornerUv`], `f v/vt`);
 //!   [`write_flat`]: any points and triangles (a flat or spherical map); [`ObjFrames`]:
-//!   many frames of one set of triangles (a morph), the face lines formatted once. Output
-//!   appears complete or not at all.
+//!   many frames of one set of triangles (a morph), the face lines formatted once. PLY
+//!   takes the map per vertex or per corner; GIfTI and FreeSurfer take surfaces (a sphere
+//!   map at radius 100), [`write_vertex_data`] per-vertex overlays. Output appears complete
+//!   or not at all.
 //! - [`read_raw_mesh`] / [`read_raw_mesh_from_bytes`]: the same parsing without validation,
 //!   for callers that repair first ([`RawMesh::validate`] is the rest of [`read_mesh`]).
 //! - [`IoError`]: the one error type; variants name the file and the line ([`Origin`]) or
@@ -52,27 +57,39 @@ mod api;
 mod atomic;
 mod coincident;
 mod corner_uv;
+mod cursor;
 mod error;
 mod frames;
+mod freesurfer;
+mod gifti;
 mod gltffile;
 mod loaded;
 mod objfile;
+mod offfile;
+mod plyfile;
 mod raw;
+mod stlfile;
 
 pub use api::{
-    read_mesh, read_mesh_from_bytes, write_flat, write_mesh_with_corner_uv, write_mesh_with_uv,
+    read_mesh, read_mesh_from_bytes, write_flat, write_flat_like, write_mesh_with_corner_uv,
+    write_mesh_with_uv, write_vertex_data, SPHERE_RADIUS, UNIT_SPHERE_TOLERANCE,
 };
 pub use coincident::{coincident_vertices, weld_coincident, Welded};
 pub use corner_uv::CornerUv;
-pub use error::{IoError, ObjProblem, Origin, UvProblem, WriteProblem};
+pub use error::{IoError, ObjProblem, Origin, Place, UvProblem, WriteProblem};
 pub use frames::ObjFrames;
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
-pub use loaded::{Format, LoadedMesh, SourceInfo, VertexText, NO_VERTEX};
+pub use loaded::{
+    CoordinateTransform, Format, LoadedMesh, SourceInfo, SurfaceMetadata, VertexText, NO_VERTEX,
+};
 pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
 
 /// Peak memory of reading a mesh file, per byte of the file (the bytes, the text the OBJ
 /// parser holds, its and our index arrays). Measured: 590 MiB for the 84 MB OBJ of a
 /// 2M-face grid (7.4×). Callers use it to refuse, before reading, a file that would not fit.
+/// It bounds every format but gzip-compressed GIfTI, whose own factor is
+/// [`Format::read_peak_bytes_per_file_byte`]; every reader also checks the counts its
+/// header declares against the bytes present before allocating for them.
 pub const READ_PEAK_BYTES_PER_FILE_BYTE: u64 = 8;
 
 /// The README's example, compiled and run as a doctest.

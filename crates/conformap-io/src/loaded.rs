@@ -11,7 +11,8 @@ use crate::error::{IoError, UvProblem};
 /// Marks a file vertex that no triangle uses in [`SourceInfo::weld_map`].
 pub const NO_VERTEX: u32 = u32::MAX;
 
-/// A mesh file format, chosen by the file's extension.
+/// A mesh file format, chosen by the file's extension (or, for FreeSurfer surfaces, which
+/// have none, by the file's first bytes: see [`Format::sniff`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Format {
@@ -21,10 +22,42 @@ pub enum Format {
     Gltf,
     /// Binary glTF 2.0 (`.glb`).
     Glb,
+    /// Stanford PLY (`.ply`): ASCII or binary, either byte order.
+    Ply,
+    /// STL (`.stl`): ASCII or binary; read only.
+    Stl,
+    /// Object File Format (`.off`, with `COFF`, `NOFF`, `STOFF`... headers); read only.
+    Off,
+    /// GIfTI (`.gii`: `.surf.gii` surfaces; `.shape.gii`/`.func.gii` data arrays are
+    /// written by [`write_vertex_data`](crate::write_vertex_data)).
+    Gifti,
+    /// FreeSurfer binary triangle surface (`lh.white`, `rh.pial`, `lh.sphere`...): named by
+    /// a surface extension (`.white`, `.pial`, `.sphere`, `.inflated`, `.orig`,
+    /// `.smoothwm`, `.midthickness`, `.reg`, or `.fsurf`) or, when reading, found by its
+    /// magic number.
+    FreeSurfer,
 }
 
+/// The extensions of FreeSurfer surfaces (`lh.white` has the extension `white`).
+const FREESURFER_EXTENSIONS: &[&str] = &[
+    "white",
+    "pial",
+    "sphere",
+    "inflated",
+    "orig",
+    "smoothwm",
+    "midthickness",
+    "reg",
+    "fsurf",
+];
+
+/// The first three bytes of a FreeSurfer triangle file (the magic number 0xFFFFFE).
+pub(crate) const FREESURFER_MAGIC: [u8; 3] = [0xff, 0xff, 0xfe];
+
 impl Format {
-    /// The format named by the extension of `path` (`.obj`, `.gltf`, `.glb`, any case).
+    /// The format named by the extension of `path` (any case): `.obj`, `.gltf`, `.glb`,
+    /// `.ply`, `.stl`, `.off`, `.gii`, and FreeSurfer's surface names (see
+    /// [`Format::FreeSurfer`]).
     ///
     /// # Errors
     /// [`IoError::UnknownFormat`] for any other extension or none.
@@ -33,7 +66,9 @@ impl Format {
     /// ```
     /// use conformap_io::Format;
     /// assert_eq!(Format::from_path("out/Head.GLB".as_ref())?, Format::Glb);
-    /// assert!(Format::from_path("head.stl".as_ref()).is_err());
+    /// assert_eq!(Format::from_path("sub-01/lh.white".as_ref())?, Format::FreeSurfer);
+    /// assert_eq!(Format::from_path("lh.sphere.surf.gii".as_ref())?, Format::Gifti);
+    /// assert!(Format::from_path("head.3ds".as_ref()).is_err());
     /// # Ok::<(), conformap_io::IoError>(())
     /// ```
     pub fn from_path(path: &Path) -> Result<Self, IoError> {
@@ -45,18 +80,75 @@ impl Format {
             Some("obj") => Ok(Self::Obj),
             Some("gltf") => Ok(Self::Gltf),
             Some("glb") => Ok(Self::Glb),
+            Some("ply") => Ok(Self::Ply),
+            Some("stl") => Ok(Self::Stl),
+            Some("off") => Ok(Self::Off),
+            Some("gii") => Ok(Self::Gifti),
+            Some(e) if FREESURFER_EXTENSIONS.contains(&e) => Ok(Self::FreeSurfer),
             _ => Err(IoError::UnknownFormat {
                 path: path.to_path_buf(),
             }),
         }
     }
 
-    /// The usual file extension, without the dot.
+    /// The format a file's first bytes show, for files whose name says none: FreeSurfer's
+    /// triangle magic `FF FF FE`, `ply`, `solid`, `OFF`, `glTF`, `<?xml` (GIfTI). `None`
+    /// when the bytes show none of them.
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_io::Format;
+    /// assert_eq!(Format::sniff(b"\xff\xff\xfecreated by me\n\n"), Some(Format::FreeSurfer));
+    /// assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n"), Some(Format::Ply));
+    /// assert_eq!(Format::sniff(b"v 0 0 0\n"), None);
+    /// ```
+    pub fn sniff(bytes: &[u8]) -> Option<Self> {
+        let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+        if bytes.starts_with(&FREESURFER_MAGIC) {
+            Some(Self::FreeSurfer)
+        } else if text.starts_with(b"ply") {
+            Some(Self::Ply)
+        } else if bytes.starts_with(b"glTF") {
+            Some(Self::Glb)
+        } else if text.starts_with(b"<?xml") || text.starts_with(b"<GIFTI") {
+            Some(Self::Gifti)
+        } else if crate::offfile::is_off_header(text) {
+            Some(Self::Off)
+        } else if text.starts_with(b"solid") {
+            Some(Self::Stl)
+        } else {
+            None
+        }
+    }
+
+    /// The usual file extension, without the dot (`surf.gii` for GIfTI surfaces, `white`
+    /// for FreeSurfer).
     pub fn extension(self) -> &'static str {
         match self {
             Self::Obj => "obj",
             Self::Gltf => "gltf",
             Self::Glb => "glb",
+            Self::Ply => "ply",
+            Self::Stl => "stl",
+            Self::Off => "off",
+            Self::Gifti => "surf.gii",
+            Self::FreeSurfer => "white",
+        }
+    }
+
+    /// Peak memory of reading a file of this format, per byte of the file: what a caller
+    /// holds against the memory available before reading (see
+    /// [`READ_PEAK_BYTES_PER_FILE_BYTE`](crate::READ_PEAK_BYTES_PER_FILE_BYTE), the bound
+    /// over every format but gzip-compressed GIfTI).
+    ///
+    /// Binary formats hold the bytes (1×) and f64 positions from f32 (2×) plus triangles
+    /// and their checks: ≤ 6×. GIfTI decodes base64 (0.75×) and may inflate gzip: its
+    /// estimate assumes the 4:1 of typical compressed surfaces and the reader stops
+    /// inflating at the size the header declares.
+    pub fn read_peak_bytes_per_file_byte(self) -> u64 {
+        match self {
+            Self::Gifti => 24,
+            _ => crate::READ_PEAK_BYTES_PER_FILE_BYTE,
         }
     }
 }
@@ -102,7 +194,7 @@ impl LoadedMesh {
 }
 
 /// Where a mesh came from and how its vertices and faces map back to the file.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct SourceInfo {
     /// The file read (`<memory>` for the `_from_bytes` readers).
@@ -131,6 +223,35 @@ pub struct SourceInfo {
     /// OBJ writer copies instead of formatting the same numbers again. `None` for glTF and
     /// for bytes read from memory.
     pub vertex_text: Option<std::sync::Arc<VertexText>>,
+    /// GIfTI and FreeSurfer surfaces: what the file says about the surface beyond its
+    /// mesh (created-by line, volume geometry, coordinate transforms), kept for the report
+    /// and for writing the same kind of file back. `None` for other formats.
+    pub surface: Option<SurfaceMetadata>,
+}
+
+/// What a neuroimaging surface file says beyond its mesh.
+#[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
+pub struct SurfaceMetadata {
+    /// FreeSurfer: the `created by …` line.
+    pub created_by: Option<String>,
+    /// FreeSurfer: the volume-geometry footer after the triangles (tag and `key = value`
+    /// lines: `valid`, `filename`, `volume`, `voxelsize`, `xras`, `yras`, `zras`, `cras`),
+    /// byte for byte; written back by the FreeSurfer writer.
+    pub volume_info: Option<Vec<u8>>,
+    /// GIfTI: the coordinate-system transforms of the point set.
+    pub transforms: Vec<CoordinateTransform>,
+}
+
+/// A GIfTI `CoordinateSystemTransformMatrix`: the affine from the points' space to another.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoordinateTransform {
+    /// The space the points are in (e.g. `NIFTI_XFORM_UNKNOWN`).
+    pub data_space: String,
+    /// The space the matrix maps them to (e.g. `NIFTI_XFORM_TALAIRACH`).
+    pub transformed_space: String,
+    /// The 4×4 matrix, row-major.
+    pub matrix: [[f64; 4]; 4],
 }
 
 /// The text of each vertex's `x y z` in an OBJ file, kept from reading for writing: copying
@@ -201,6 +322,7 @@ impl SourceInfo {
             file_faces: None,
             notes: Vec::new(),
             vertex_text: None,
+            surface: None,
         }
     }
 }

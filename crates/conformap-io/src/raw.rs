@@ -42,6 +42,52 @@ pub struct RawMesh {
     /// glTF: the primitive ranges and the file vertex of each welded vertex, to name an
     /// element's origin. Empty for OBJ (lines are in `source`).
     origins: GltfOrigins,
+    /// PLY, STL, OFF, GIfTI, FreeSurfer: the file element of each vertex and face.
+    elements: Option<ElementOrigins>,
+}
+
+/// What a PLY, STL, OFF, GIfTI or FreeSurfer read keeps to name an element's origin.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ElementOrigins {
+    /// What the file calls a vertex (`vertex`).
+    pub(crate) vertex: &'static str,
+    /// What the file calls a face (`face`, `facet`, `triangle`).
+    pub(crate) face: &'static str,
+    /// The file element of each mesh vertex; empty: the same index.
+    pub(crate) vertex_of: Vec<usize>,
+    /// The file element of each mesh face (a polygon gives several); empty: the same index.
+    pub(crate) face_of: Vec<usize>,
+}
+
+impl ElementOrigins {
+    /// Vertex `k` and face `k` are the file's `k`-th ones.
+    pub(crate) fn identity(vertex: &'static str, face: &'static str) -> Self {
+        Self {
+            vertex,
+            face,
+            ..Self::default()
+        }
+    }
+
+    fn origin(&self, element: Element) -> Option<Origin> {
+        let pick = |of: &[usize], k: usize| {
+            if of.is_empty() {
+                Some(k)
+            } else {
+                of.get(k).copied()
+            }
+        };
+        Some(match element {
+            Element::Vertex(v) => Origin::Element {
+                element: self.vertex,
+                index: pick(&self.vertex_of, v)?,
+            },
+            Element::Face(f) => Origin::Element {
+                element: self.face,
+                index: pick(&self.face_of, f)?,
+            },
+        })
+    }
 }
 
 /// What a glTF read keeps to name the origin of a welded vertex or a face.
@@ -72,7 +118,15 @@ impl RawMesh {
             corner_uv: None,
             source,
             origins: origins.unwrap_or_default(),
+            elements: None,
         }
+    }
+
+    /// Sets the file elements that vertices and faces come from (formats other than OBJ
+    /// and glTF).
+    pub(crate) fn with_elements(mut self, elements: ElementOrigins) -> Self {
+        self.elements = Some(elements);
+        self
     }
 
     /// Sets [`Self::corner_uv`].
@@ -96,13 +150,20 @@ impl RawMesh {
             let old = std::mem::take(&mut self.origins.first_file);
             self.origins.first_file = first.iter().map(|&i| old[i]).collect();
         }
+        if let Some(e) = &mut self.elements {
+            let old = std::mem::take(&mut e.vertex_of);
+            e.vertex_of = first
+                .iter()
+                .map(|&i| if old.is_empty() { i } else { old[i] })
+                .collect();
+        }
     }
 
     /// The file place of the vertex or face `error` names (its numbering must be this
     /// mesh's): an OBJ line, a glTF primitive vertex or triangle; `None` for whole-mesh
     /// errors or an index past the mesh.
     pub fn origin_of(&self, error: &MeshError) -> Option<Origin> {
-        origin_in(&self.source, &self.origins, error)
+        origin_in(&self.source, &self.origins, self.elements.as_ref(), error)
     }
 
     /// The [`IoError::InvalidMesh`] for a validation error about this mesh (this mesh's
@@ -140,10 +201,11 @@ impl RawMesh {
             corner_uv,
             source,
             origins,
+            elements,
         } = self;
         let mesh = TriMesh::try_new(positions, faces).map_err(|e| IoError::InvalidMesh {
             path: source.path.clone(),
-            origin: origin_in(&source, &origins, &e),
+            origin: origin_in(&source, &origins, elements.as_ref(), &e),
             source: e,
         })?;
         // a valid mesh references every vertex, so a per-vertex uv has every slot filled
@@ -164,12 +226,17 @@ impl RawMesh {
 }
 
 /// See [`RawMesh::origin_of`].
-fn origin_in(src: &SourceInfo, origins: &GltfOrigins, error: &MeshError) -> Option<Origin> {
-    match (
-        mesh_error_element(error)?,
-        &src.vertex_lines,
-        &src.face_lines,
-    ) {
+fn origin_in(
+    src: &SourceInfo,
+    origins: &GltfOrigins,
+    elements: Option<&ElementOrigins>,
+    error: &MeshError,
+) -> Option<Origin> {
+    let element = mesh_error_element(error)?;
+    if let Some(e) = elements {
+        return e.origin(element);
+    }
+    match (element, &src.vertex_lines, &src.face_lines) {
         (Element::Vertex(v), Some(lines), _) => lines.get(v).map(|&l| Origin::Line(l)),
         (Element::Face(f), _, Some(lines)) => lines.get(f).map(|&l| Origin::Line(l)),
         (Element::Vertex(v), None, _) => {
@@ -196,11 +263,18 @@ fn origin_in(src: &SourceInfo, origins: &GltfOrigins, error: &MeshError) -> Opti
 /// ```
 pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
     let path = path.as_ref();
-    let format = Format::from_path(path)?;
+    let named = Format::from_path(path);
     let bytes = read_file(path).map_err(|source| IoError::Read {
         path: path.to_path_buf(),
         source,
     })?;
+    // a FreeSurfer surface (`lh.white`) or a file named otherwise is known by its magic
+    let format = match named {
+        Ok(format) => format,
+        Err(e) => Format::sniff(&bytes)
+            .or_else(|| freesurfer_name(path))
+            .ok_or(e)?,
+    };
     match format {
         Format::Obj => {
             let (mut raw, spans) = read_obj_raw(&bytes, path)?;
@@ -212,6 +286,26 @@ pub fn read_raw_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
             let base = path.parent().unwrap_or(Path::new(""));
             read_gltf_raw(&bytes, path, Some(base), format)
         }
+        other => read_other_raw(&bytes, path, other),
+    }
+}
+
+/// FreeSurfer for a name like `lh.mysurf` or `rh.x` (whose extension names no format): its
+/// reader then says what is wrong with the magic.
+fn freesurfer_name(path: &Path) -> Option<Format> {
+    let name = path.file_name()?.to_str()?;
+    (name.starts_with("lh.") || name.starts_with("rh.")).then_some(Format::FreeSurfer)
+}
+
+/// The readers of PLY, STL, OFF, GIfTI and FreeSurfer surfaces.
+fn read_other_raw(bytes: &[u8], path: &Path, format: Format) -> Result<RawMesh, IoError> {
+    match format {
+        Format::Ply => crate::plyfile::read_ply_raw(bytes, path),
+        Format::Stl => crate::stlfile::read_stl_raw(bytes, path),
+        Format::Off => crate::offfile::read_off_raw(bytes, path),
+        Format::Gifti => crate::gifti::read_gifti_raw(bytes, path),
+        Format::FreeSurfer => crate::freesurfer::read_freesurfer_raw(bytes, path),
+        Format::Obj | Format::Gltf | Format::Glb => Ok(read_obj_raw(bytes, path)?.0),
     }
 }
 
@@ -262,6 +356,7 @@ pub fn read_raw_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<RawMesh,
     match format {
         Format::Obj => Ok(read_obj_raw(bytes, path)?.0),
         Format::Gltf | Format::Glb => read_gltf_raw(bytes, path, None, format),
+        other => read_other_raw(bytes, path, other),
     }
 }
 

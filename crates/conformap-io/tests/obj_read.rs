@@ -286,7 +286,8 @@ fn bad_fixtures_give_the_specific_error_and_line() {
         (
             3,
             ObjProblem::BadNumber {
-                keyword: "v".into()
+                keyword: "v".into(),
+                text: "O.5".into(),
             }
         )
     );
@@ -345,12 +346,57 @@ fn hostile_text_is_an_error_not_a_panic() {
 
 #[test]
 fn unknown_extension_and_missing_file() {
+    // neither the extension nor the first bytes name a mesh format
     assert!(matches!(
-        read_mesh("mesh.stl"),
+        read_mesh(fixture("README.md")),
         Err(IoError::UnknownFormat { .. })
     ));
     assert!(matches!(
         read_mesh(fixture("no_such_file.obj")),
         Err(IoError::Read { .. })
     ));
+}
+
+/// Inputs that common OBJ readers accept: a trailing comment, `f v//vn` without `vn`
+/// lines; and number errors that quote the text, say when it overflowed, and speak of
+/// `w` only where there is one.
+#[test]
+fn common_obj_inputs_and_number_messages() {
+    let tri = "v 0 0 0 # origin\nv 1 0 0\t# x\nv 0 1 0 #\nvt 0 0 # uv\nf 1 2 3 # face\n";
+    let loaded = read_mesh_from_bytes(tri.as_bytes(), Format::Obj).unwrap();
+    assert_eq!(loaded.mesh.positions()[1], [1.0, 0.0, 0.0]);
+    assert_eq!(loaded.mesh.faces(), &[[0, 1, 2]]);
+    let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4 # quad\n";
+    let loaded = read_mesh_from_bytes(quad.as_bytes(), Format::Obj).unwrap();
+    assert_eq!(loaded.mesh.faces(), &[[0, 1, 2], [0, 2, 3]]);
+
+    let normals = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n";
+    let loaded = read_mesh_from_bytes(normals.as_bytes(), Format::Obj).unwrap();
+    assert_eq!(loaded.mesh.faces(), &[[0, 1, 2]]);
+    // with `vn` lines, a normal index is still checked
+    let err = read_mesh_from_bytes(b"v 0 0 0\nvn 0 0 1\nf 1//2 1//1 1//1\n", Format::Obj);
+    assert!(matches!(
+        err,
+        Err(IoError::ObjSyntax {
+            problem: ObjProblem::IndexOutOfRange { what: "normal", .. },
+            ..
+        })
+    ));
+
+    let msg = |text: &str| {
+        read_mesh_from_bytes(text.as_bytes(), Format::Obj)
+            .unwrap_err()
+            .to_string()
+    };
+    let m = msg("v 1 O.5 0\n");
+    assert!(
+        m.contains("`O.5` is not a number") && !m.contains("w = 0"),
+        "{m}"
+    );
+    let m = msg("vt 0 x\n");
+    assert!(m.contains("`x`") && !m.contains("w = 0"), "{m}");
+    let m = msg("v 1e400 0 0\n");
+    assert!(m.contains("`1e400` overflows"), "{m}");
+    let m = msg("v 1 2 3 0\n");
+    assert!(m.contains("w = 0"), "{m}");
 }

@@ -201,8 +201,16 @@ fn writer_errors_leave_no_file() {
         }
     ));
     assert!(matches!(
-        write_flat(dir.join("x.ply"), &[], &[]),
+        write_flat(dir.join("x.3ds"), &[], &[]),
         Err(IoError::UnknownFormat { .. })
+    ));
+    // STL and OFF are read only
+    assert!(matches!(
+        write_flat(dir.join("x.stl"), &[], &[]),
+        Err(IoError::BadWriteInput {
+            problem: WriteProblem::NotWritable { .. },
+            ..
+        })
     ));
     let err = write_flat(dir.join("missing/dir/x.obj"), &[[0.0; 3]], &[]).unwrap_err();
     assert!(matches!(err, IoError::Write { .. }));

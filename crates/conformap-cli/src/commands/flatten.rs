@@ -60,7 +60,9 @@ fn parse_corners(s: &str) -> Result<[u32; 4], String> {
         .split(',')
         .map(|t| t.trim().parse::<u32>())
         .collect::<Result<_, _>>()
-        .map_err(|_| format!("corners must be four 0-based vertex indices V1,V2,V3,V4, got {s:?}"))?;
+        .map_err(|_| {
+            format!("corners must be four 0-based vertex indices V1,V2,V3,V4, got {s:?}")
+        })?;
     v.try_into()
         .map_err(|_| format!("corners must be four 0-based vertex indices V1,V2,V3,V4, got {s:?}"))
 }
@@ -69,12 +71,19 @@ fn parse_aspect(s: &str) -> Result<f64, String> {
     let value = match s.split_once('/') {
         Some((w, h)) => {
             let (w, h): (f64, f64) = (
-                w.trim().parse().map_err(|_| format!("bad width in {s:?}"))?,
-                h.trim().parse().map_err(|_| format!("bad height in {s:?}"))?,
+                w.trim()
+                    .parse()
+                    .map_err(|_| format!("bad width in {s:?}"))?,
+                h.trim()
+                    .parse()
+                    .map_err(|_| format!("bad height in {s:?}"))?,
             );
             w / h
         }
-        None => s.trim().parse().map_err(|_| format!("aspect must be W/H or a number, got {s:?}"))?,
+        None => s
+            .trim()
+            .parse()
+            .map_err(|_| format!("aspect must be W/H or a number, got {s:?}"))?,
     };
     if value > 0.0 && value.is_finite() {
         Ok(value)

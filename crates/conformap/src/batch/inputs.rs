@@ -16,7 +16,7 @@ pub struct BatchInput {
 }
 
 /// Whether `path` names a manifest rather than a mesh: anything without a mesh extension
-/// (`.obj`, `.gltf`, `.glb`).
+/// (`.obj`, `.gltf`, `.glb`, `.ply`, `.stl`, `.off`, `.gii`, FreeSurfer surface names).
 pub fn is_manifest(path: &Path) -> bool {
     conformap_io::Format::from_path(path).is_err()
 }

@@ -186,7 +186,7 @@ impl BatchJob {
                 .mesh
                 .extension()
                 .map(|e| e.to_string_lossy().to_ascii_lowercase())
-                .filter(|e| matches!(e.as_str(), "obj" | "gltf" | "glb"))
+                .filter(|e| matches!(e.as_str(), "obj" | "gltf" | "glb" | "ply"))
                 .unwrap_or_else(|| "obj".to_string()),
         };
         let mesh_out = self.out_dir.join(format!("{}.{ext}", input.stem));

@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use conformap_disk::{koebe_peak_bytes, unfold_disk_map, ProblemOptions};
 use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
-use conformap_operators::Ordering as FactorOrdering;
-use conformap_sphere::{double_cover_disk_map, SphereOptions};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
+use conformap_operators::Ordering as FactorOrdering;
 use conformap_operators::PeakMemory;
+use conformap_sphere::{double_cover_disk_map, SphereOptions};
 use serde_json::json;
 
 use crate::failure::Failure;

@@ -231,11 +231,19 @@ impl MapJob for FlattenJob {
             None => None,
         };
         let read_ms = t.elapsed().as_secs_f64() * 1e3;
-        let options = self.options(text.as_deref()).map_err(|e| input.fail(e.into()))?;
+        let options = self
+            .options(text.as_deref())
+            .map_err(|e| input.fail(e.into()))?;
         let flat = flatten(mesh, &options).map_err(|e| input.fail(e.into()))?;
         let r = &flat.report;
         let converged = r.closure_residual < FLATTEN_CLOSURE_TOL;
-        let solver = SolverSection::new(0, converged, Vec::new(), r.closure_residual, &serde_json::json!({}));
+        let solver = SolverSection::new(
+            0,
+            converged,
+            Vec::new(),
+            r.closure_residual,
+            &serde_json::json!({}),
+        );
         let mut sections = crate::report::Sections::default();
         sections.flatten = Some(FlattenSection::from(r));
         let flipped = r.metrics.flipped_faces;
@@ -245,7 +253,10 @@ impl MapJob for FlattenJob {
                 r.boundary_touches
             ))
         } else if !converged {
-            Some(format!("the boundary curve did not close (residual {:.1e})", r.closure_residual))
+            Some(format!(
+                "the boundary curve did not close (residual {:.1e})",
+                r.closure_residual
+            ))
         } else {
             None
         };
@@ -255,11 +266,16 @@ impl MapJob for FlattenJob {
             mesh.num_vertices(),
             mesh.num_faces(),
             r.boundary,
-            r.aspect.map_or(String::new(), |a| format!(" (aspect {a:.6})")),
+            r.aspect
+                .map_or(String::new(), |a| format!(" (aspect {a:.6})")),
             r.metrics.area_distortion_log.sd,
             r.metrics.angle_distortion_deg.mean,
             flipped,
-            if r.overlap_free { "" } else { "; the image overlaps itself" },
+            if r.overlap_free {
+                ""
+            } else {
+                "; the image overlaps itself"
+            },
         );
         Ok(Solved {
             picture_domain: None,

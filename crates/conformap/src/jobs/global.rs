@@ -10,7 +10,9 @@
 
 use std::path::{Path, PathBuf};
 
-use conformap_global::{global_map, ConjugateMethod, GlobalMapOptions, Objective, TopologyOptOptions};
+use conformap_global::{
+    global_map, ConjugateMethod, GlobalMapOptions, Objective, TopologyOptOptions,
+};
 use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
 

@@ -4,10 +4,13 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use conformap_sphere::{equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE};
 use conformap_mesh::TriMesh;
 use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
+use conformap_sphere::{
+    equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
+    sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
+};
 
 use crate::failure::Failure;
 use crate::jobs::param::{on_unit_sphere, read_map_file, read_region, MapFile};

@@ -3,9 +3,12 @@
 
 use std::time::Instant;
 
-use conformap_sphere::{equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective, MobiusOptions, SphereMetrics, SphereOptions};
 use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
+use conformap_sphere::{
+    equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
+    MobiusOptions, SphereMetrics, SphereOptions,
+};
 
 use crate::failure::Failure;
 use crate::jobs::converged::sphere_map_converged;
