@@ -220,6 +220,7 @@ impl MapJob for FlattenJob {
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
+        check_topology(mesh).map_err(|f| input.fail(f))?;
         let t = std::time::Instant::now();
         let text = match self.boundary.file() {
             Some(path) => Some(std::fs::read_to_string(path).map_err(|e| {
@@ -244,8 +245,10 @@ impl MapJob for FlattenJob {
             r.closure_residual,
             &serde_json::json!({}),
         );
-        let mut sections = crate::report::Sections::default();
-        sections.flatten = Some(FlattenSection::from(r));
+        let sections = crate::report::Sections {
+            flatten: Some(FlattenSection::from(r)),
+            ..Default::default()
+        };
         let flipped = r.metrics.flipped_faces;
         let strict_violation = if !r.overlap_free {
             Some(format!(
@@ -296,6 +299,44 @@ impl MapJob for FlattenJob {
             strict_violation,
             summary,
         })
+    }
+}
+
+/// A flattening needs a connected genus-0 surface with a boundary; every other topology
+/// is refused with the command that maps it.
+fn check_topology(mesh: &TriMesh) -> Result<(), Failure> {
+    use conformap_mesh::Topology as T;
+    let hint = match mesh.topology() {
+        T::Disk | T::MultiplyConnected { .. } => return Ok(()),
+        T::Sphere => {
+            "a closed surface has no boundary to flatten: `conformap sphere` maps it onto the \
+             sphere; cut it open (delete a face or a strip of faces) to flatten it"
+        }
+        T::SeveralComponents { .. } => {
+            "flatten maps one connected surface: rerun with --repair to keep the largest \
+             component, or split the file"
+        }
+        _ => {
+            "flatten needs genus 0: `conformap global` maps surfaces with handles; \
+             `conformap info MESH` shows the topology"
+        }
+    };
+    Err(Failure::BadInput(
+        format!(
+            "boundary first flattening needs a connected genus-0 surface with a boundary, but \
+             the mesh is {}",
+            topology_name(mesh)
+        ),
+        Some(hint.to_string()),
+    ))
+}
+
+fn topology_name(mesh: &TriMesh) -> String {
+    match (mesh.genus(), mesh.boundary_loops().len()) {
+        (Some(0), 0) => "a closed genus-0 surface".into(),
+        (Some(g), 0) => format!("a closed surface of genus {g}"),
+        (Some(g), b) => format!("a surface of genus {g} with {b} boundary loop(s)"),
+        (None, _) => format!("{} components", mesh.num_components()),
     }
 }
 
