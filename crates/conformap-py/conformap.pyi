@@ -82,6 +82,39 @@ def disk_map(
         report["metrics"]["conformal_energy"]
     """
 
+def flatten(
+    V: ArrayLike,
+    F: ArrayLike,
+    boundary: Literal["free", "circle", "rectangle", "scale", "angles", "polygon"] = "free",
+    values: Optional[Union[Mapping[int, float], Sequence[Tuple[int, float]]]] = None,
+    *,
+    corners: Optional[Tuple[int, int, int, int]] = None,
+    aspect: Optional[float] = None,
+    interior: Literal["harmonic", "conjugate"] = "harmonic",
+    strict: bool = False,
+    max_memory: Optional[int] = None,
+) -> Tuple[npt.NDArray[np.float64], Report]:
+    """Boundary first flattening, as ``conformap flatten``.
+
+    ``boundary``: ``free`` (u = 0: the boundary keeps its lengths, the least area
+    distortion), ``circle``, ``rectangle`` (``corners`` in boundary order, ``aspect`` width
+    over height), or ``scale`` / ``angles`` / ``polygon`` with ``values``: a dict or pairs
+    ``(0-based vertex, value)`` — the scale factor u, or the exterior angle in degrees (every
+    boundary vertex for ``scale`` and ``angles``, the corners in boundary order for
+    ``polygon``).
+
+    Returns ``(uv, report)``: ``uv`` (n, 2) float64, the flat layout per vertex in the
+    input's order; ``report`` the CLI's report dict (``report["flatten"]``: boundary mode,
+    corners, closure residual, boundary scale range, overlap).
+
+    Raises ConformapError for bad input, NumericalError for numerical failure.
+
+    Example::
+
+        uv, report = conformap.flatten(V, F, "rectangle", aspect=2.0)
+        report["flatten"]["aspect"]
+    """
+
 def sphere_map(
     V: ArrayLike,
     F: ArrayLike,

@@ -11,6 +11,7 @@
 //! - [`errors`]: `ConformapError` (a `ValueError`) and `NumericalError` (a
 //!   `RuntimeError`), from the CLI's failures.
 //! - [`maps`]: `disk_map`, `sphere_map`.
+//! - [`flatten`]: `flatten` (boundary first flattening; boundary values in memory).
 //! - [`mobius`]: `mobius` (the map and the region in memory).
 //! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
@@ -18,6 +19,7 @@
 
 pub mod arrays;
 pub mod errors;
+pub mod flatten;
 pub mod global;
 pub mod maps;
 pub mod meshes;
@@ -35,6 +37,7 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", py.get_type::<errors::NumericalError>())?;
     m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
+    m.add_function(wrap_pyfunction!(flatten::flatten, m)?)?;
     m.add_function(wrap_pyfunction!(mobius::mobius, m)?)?;
     m.add_function(wrap_pyfunction!(global::global_map, m)?)?;
     m.add_function(wrap_pyfunction!(morph::morph, m)?)?;

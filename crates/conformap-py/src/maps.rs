@@ -44,7 +44,7 @@ pub(crate) fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bou
 
 /// The first `n` points of the solve's flat mesh (a refined double cover keeps the input's
 /// vertices first, in the input's order).
-fn flat_rows(solved: &Solved, n: usize) -> &[[f64; 3]] {
+pub(crate) fn flat_rows(solved: &Solved, n: usize) -> &[[f64; 3]] {
     &solved.flat.0[..n.min(solved.flat.0.len())]
 }
 

@@ -42,6 +42,9 @@ pub struct FlattenJob {
     pub aspect: Option<f64>,
     /// The interior variant.
     pub interior: Interior,
+    /// The text of the boundary file given in memory (the Python package's `values`):
+    /// used instead of reading [`BoundarySpec::file`].
+    pub boundary_text: Option<String>,
 }
 
 impl FlattenJob {
@@ -54,6 +57,7 @@ impl FlattenJob {
             corners: None,
             aspect: None,
             interior: Interior::Harmonic,
+            boundary_text: None,
         }
     }
 
@@ -193,7 +197,10 @@ impl MapJob for FlattenJob {
     }
 
     fn other_inputs(&self) -> Vec<&std::path::Path> {
-        self.boundary.file().into_iter().collect()
+        match self.boundary_text {
+            Some(_) => Vec::new(),
+            None => self.boundary.file().into_iter().collect(),
+        }
     }
 
     fn check_usage(&self) -> Result<(), Failure> {
@@ -222,14 +229,15 @@ impl MapJob for FlattenJob {
         let mesh = &input.mesh;
         check_topology(mesh).map_err(|f| input.fail(f))?;
         let t = std::time::Instant::now();
-        let text = match self.boundary.file() {
-            Some(path) => Some(std::fs::read_to_string(path).map_err(|e| {
+        let text = match (self.boundary.file(), &self.boundary_text) {
+            (_, Some(text)) => Some(text.clone()),
+            (Some(path), None) => Some(std::fs::read_to_string(path).map_err(|e| {
                 Failure::BadInput(
                     format!("cannot read {}: {e}", path.display()),
                     Some("give a readable text file of `<vertex> <value>` lines".into()),
                 )
             })?),
-            None => None,
+            (None, None) => None,
         };
         let read_ms = t.elapsed().as_secs_f64() * 1e3;
         let options = self

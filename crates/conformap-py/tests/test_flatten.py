@@ -1,0 +1,56 @@
+"""flatten (boundary first flattening) against the CLI, boundary values in memory, errors."""
+import numpy as np
+import pytest
+
+import conformap
+from conftest import FIXTURES, run_cli
+
+
+def test_free_boundary_matches_cli_and_keeps_lengths(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "spothead.obj")
+    uv, report = conformap.flatten(V, F)
+    code, cli, err = run_cli(["flatten", str(FIXTURES / "spothead.obj"), "-o", str(tmp_path / "f.obj")], tmp_path)
+    assert code == 0, err
+    assert uv.shape == (V.shape[0], 2)
+    assert set(report) == set(cli)
+    assert report["flatten"]["boundary"] == "free"
+    assert report["metrics"]["flipped_faces"] == cli["metrics"]["flipped_faces"] == 0
+    assert report["metrics"]["conformal_energy"] == pytest.approx(cli["metrics"]["conformal_energy"], rel=1e-12)
+    # u = 0: every boundary edge keeps its 3D length up to the closing (< 1e-3 relative)
+    F = np.asarray(F)
+    directed = {(int(a), int(b)) for f in F for a, b in ((f[0], f[1]), (f[1], f[2]), (f[2], f[0]))}
+    boundary = np.array([e for e in directed if (e[1], e[0]) not in directed])
+    assert len(boundary) == 48  # spothead's one loop
+    l3 = np.linalg.norm(V[boundary[:, 0]] - V[boundary[:, 1]], axis=1)
+    l2 = np.linalg.norm(uv[boundary[:, 0]] - uv[boundary[:, 1]], axis=1)
+    assert np.max(np.abs(l2 / l3 - 1.0)) < 1e-3
+
+
+def test_polygon_values_in_memory_give_a_triangle(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "woody.obj")
+    _, free = conformap.flatten(V, F)
+    # three corners a third of the boundary apart: an equilateral triangle
+    _, rect = conformap.flatten(V, F, "rectangle")
+    corners = rect["flatten"]["corners"]
+    assert len(corners) == 4
+    tri = {corners[0]: 120.0, corners[1]: 120.0, corners[2]: 120.0}
+    uv, report = conformap.flatten(V, F, "polygon", tri)
+    assert report["flatten"]["boundary"] == "polygon"
+    assert report["metrics"]["flipped_faces"] == 0
+    p = uv[corners[:3]]
+    sides = [np.linalg.norm(p[i] - p[(i + 1) % 3]) for i in range(3)]
+    # three 60° corners and straight sides: the three sides are equal
+    assert max(sides) / min(sides) - 1.0 < 1e-9
+
+
+def test_bad_arguments_raise_conformap_error():
+    V, F = conformap.read_mesh(FIXTURES / "woody.obj")
+    with pytest.raises(conformap.ConformapError):
+        conformap.flatten(V, F, "square")
+    with pytest.raises(conformap.ConformapError):
+        conformap.flatten(V, F, "polygon")  # no values
+    with pytest.raises(conformap.ConformapError):
+        conformap.flatten(V, F, "free", {0: 1.0})  # values for a mode without them
+    S, G = conformap.read_mesh(FIXTURES / "spot.obj")
+    with pytest.raises(conformap.ConformapError, match="conformap sphere"):
+        conformap.flatten(S, G)
