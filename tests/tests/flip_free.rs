@@ -1,5 +1,5 @@
 //! Flip-free disk maps on real meshes (issue 7), judged by the metrics crate with the
-//! mesh's own cotangent weights (design.md: E_C of CEM Eq. 5–8).
+//! mesh's own cotangent weights (docs/design.md: E_C of CEM Eq. 5–8).
 //!
 //! Default run: the committed fixtures woody and alligator (Delaunay) and spothead (1.9% of
 //! interior edges with negative cotangent weights). The whole of class a in

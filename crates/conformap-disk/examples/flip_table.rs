@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p conformap-disk --example flip_table -- [--ccem] MESH.obj...`
 //!
-//! `E_C` is always judged with the mesh's own cotangent weights (design.md, CEM Eq. 5–8),
+//! `E_C` is always judged with the mesh's own cotangent weights (docs/design.md, CEM Eq. 5–8),
 //! whatever Laplacian the map was computed with.
 use std::time::Instant;
 

@@ -19,7 +19,7 @@ pub struct Histogram {
 }
 
 /// Quality metrics of a planar map; the first ten fields are the `"metrics"` object of the
-/// report schema in `design.md`, with the same names. Every number is finite.
+/// report schema in `docs/design.md`, with the same names. Every number is finite.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[non_exhaustive]
 pub struct MapMetrics {

@@ -1,4 +1,4 @@
-//! The JSON report of a map command (schema in design.md: stable field names), as types:
+//! The JSON report of a map command (schema in docs/design.md: stable field names), as types:
 //! a field the schema requires cannot be left out without a compile error.
 //!
 //! Every map command returns a [`Report`]; the pipeline writes it with `--report` and the

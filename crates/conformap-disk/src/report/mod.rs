@@ -9,7 +9,7 @@ mod ccem;
 pub use ccem::{BoundaryReport, CcemReport, CcemStages, LineSearchReport, SchurReport, StepRecord};
 
 /// Wall-clock time per stage, milliseconds. Field names follow the report schema of
-/// `design.md` (`timings_ms`).
+/// `docs/design.md` (`timings_ms`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Timings {
     /// Assembling the Laplacian and its blocks.
