@@ -194,7 +194,8 @@ fn holes_are_filled_and_the_conjugate_interior_agrees_with_the_harmonic_one() {
     let (hm, cm) = (&h.report.metrics, &c.report.metrics);
     assert!((hm.angle_distortion_deg.mean - cm.angle_distortion_deg.mean).abs() < 0.1);
     assert!((hm.area_distortion_log.sd / cm.area_distortion_log.sd - 1.0).abs() < 0.02);
-    // the report serializes with the fields the application layer reads
+    // the report serializes as the `flatten` section: its own fields, not the metrics and
+    // timings (the report's `metrics` and `timings_ms` hold those)
     let json = serde_json::to_value(&h.report).expect("serializable");
     for key in [
         "boundary",
@@ -202,13 +203,11 @@ fn holes_are_filled_and_the_conjugate_interior_agrees_with_the_harmonic_one() {
         "closure_residual",
         "boundary_u_min",
         "overlap_free",
-        "metrics",
-        "timings_ms",
     ] {
         assert!(json.get(key).is_some(), "{key}");
     }
+    assert!(json.get("metrics").is_none() && json.get("timings_ms").is_none());
     assert_eq!(json["boundary"], "free");
-    assert_eq!(json["metrics"]["flipped_faces"], 0);
 }
 
 #[test]

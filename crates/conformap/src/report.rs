@@ -53,7 +53,7 @@ pub struct Sections {
     /// The boundary first flattening (`flatten`): boundary mode, corners, the curve's
     /// closing, the boundary scale factors, overlap.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub flatten: Option<crate::jobs::flatten::FlattenSection>,
+    pub flatten: Option<conformap_disk::FlattenReport>,
     /// The holomorphic form, its periods, zeros and seams (`global`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub global: Option<Value>,

@@ -23,7 +23,9 @@ pub struct FlattenTimings {
     pub total: f64,
 }
 
-/// The report of a flattening (serializes to the `"flatten"` object of a JSON report).
+/// The report of a flattening (serializes to the `"flatten"` object of a JSON report; its
+/// [`Self::metrics`] and [`Self::timings_ms`] are the report's own `metrics` and
+/// `timings_ms`, so they are not serialized here).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[non_exhaustive]
 pub struct FlattenReport {
@@ -75,8 +77,10 @@ pub struct FlattenReport {
     pub laplacian: String,
     /// Quality of the map (E_C, angle and area distortion, flipped faces…), judged on the
     /// input mesh by `conformap-metrics`; `area_distortion_log.sd` is the area spread.
+    #[serde(skip_serializing)]
     pub metrics: MapMetrics,
     /// Step timings.
+    #[serde(skip_serializing)]
     pub timings_ms: FlattenTimings,
 }
 

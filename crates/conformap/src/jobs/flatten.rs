@@ -4,7 +4,6 @@
 
 use conformap_disk::{flatten, flatten_peak_bytes, BoundarySpec, FlattenInterior, FlattenOptions};
 use conformap_mesh::TriMesh;
-use serde::Serialize;
 
 use crate::failure::Failure;
 use crate::pipeline::{planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
@@ -108,73 +107,6 @@ impl FlattenJob {
     }
 }
 
-/// The report's `flatten` section: the library's report without its metrics (they are
-/// the report's `metrics`) and timings (they are in `timings_ms`).
-#[derive(Debug, Clone, Serialize)]
-pub struct FlattenSection {
-    /// The boundary mode.
-    pub boundary: &'static str,
-    /// The interior variant and operator.
-    pub interior: &'static str,
-    /// The operator of the interior solve.
-    pub interior_operator: &'static str,
-    /// Corner vertices (rectangle, polygon).
-    pub corners: Vec<u32>,
-    /// The curve's gap before closing, relative to its perimeter.
-    pub closure_gap: f64,
-    /// The gap after closing.
-    pub closure_residual: f64,
-    /// Largest relative change of a boundary length made by the closing.
-    pub closure_max_length_change: f64,
-    /// Range of the boundary scale factors `u`.
-    pub boundary_u_min: f64,
-    /// Range of the boundary scale factors `u`.
-    pub boundary_u_max: f64,
-    /// Rectangle: the conformal modulus.
-    pub conformal_aspect: Option<f64>,
-    /// Rectangle: the aspect of the map.
-    pub aspect: Option<f64>,
-    /// Rectangle with an asked aspect: the dilatation it costs.
-    pub aspect_dilatation: Option<f64>,
-    /// Boundary edges that cross or touch.
-    pub boundary_touches: usize,
-    /// No fold and no touching boundary: the map is one to one.
-    pub overlap_free: bool,
-    /// Degenerate faces on a straight side (by construction).
-    pub straight_side_ears: usize,
-    /// Holes filled before flattening.
-    pub filled_holes: usize,
-    /// Faces the first interior solve folded, before any fallback.
-    pub flipped_before_fallback: usize,
-    /// Which Laplacian the solves used, and why.
-    pub laplacian: String,
-}
-
-impl From<&conformap_disk::FlattenReport> for FlattenSection {
-    fn from(r: &conformap_disk::FlattenReport) -> Self {
-        Self {
-            boundary: r.boundary,
-            interior: r.interior,
-            interior_operator: r.interior_operator,
-            corners: r.corners.clone(),
-            closure_gap: r.closure_gap,
-            closure_residual: r.closure_residual,
-            closure_max_length_change: r.closure_max_length_change,
-            boundary_u_min: r.boundary_u_min,
-            boundary_u_max: r.boundary_u_max,
-            conformal_aspect: r.conformal_aspect,
-            aspect: r.aspect,
-            aspect_dilatation: r.aspect_dilatation,
-            boundary_touches: r.boundary_touches,
-            overlap_free: r.overlap_free,
-            straight_side_ears: r.straight_side_ears,
-            filled_holes: r.filled_holes,
-            flipped_before_fallback: r.flipped_before_fallback,
-            laplacian: r.laplacian.clone(),
-        }
-    }
-}
-
 /// A direct method converges when its closing step closed the curve: residual below
 /// `1e-9` of the perimeter (measured ≤ 6e-16 on every shared mesh).
 pub const FLATTEN_CLOSURE_TOL: f64 = 1e-9;
@@ -254,7 +186,7 @@ impl MapJob for FlattenJob {
             &serde_json::json!({}),
         );
         let sections = crate::report::Sections {
-            flatten: Some(FlattenSection::from(r)),
+            flatten: Some(r.clone()),
             ..Default::default()
         };
         let flipped = r.metrics.flipped_faces;
