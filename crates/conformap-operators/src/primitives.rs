@@ -1,5 +1,6 @@
 //! Small geometric primitives with one home: 3D vector arithmetic on `[f64; 3]`
-//! ([`vec3`]) and planar polygon and triangle areas on [`Complex64`] points ([`planar`]).
+//! ([`vec3`]) and planar polygon and triangle areas on [`num_complex::Complex64`] points
+//! ([`planar`]).
 //!
 //! Every crate of the workspace that needs a dot product or a shoelace area takes it from
 //! here, so the rounding of those few operations is the same everywhere (the outputs of the

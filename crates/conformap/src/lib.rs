@@ -35,7 +35,7 @@
 //! - [`batch`]: one map job over many meshes, in parallel within a memory budget.
 //! - [`report`]: the report's types (stable field names).
 //! - [`failure`]: failures, their exit classes (1 bad input, 2 usage, 3 numerical) and hints.
-//! - [`choice`]: named option values (`"ccem-qn"`) parsed the same way by every front end.
+//! - [`choice`](mod@choice): named option values (`"ccem-qn"`) parsed the same way by every front end.
 //!
 //! # Adding a command
 //! 1. A module `jobs/<name>.rs` with a `#[non_exhaustive]` `<Name>Job` holding

@@ -15,7 +15,7 @@ pub struct BatchArgs {
     /// The command run on every input.
     #[arg(long, value_parser = choice::<BatchCommand>())]
     pub command: BatchCommand,
-    /// Where the outputs go: DIR/<stem>.<ext> and DIR/<stem>.json (created if missing).
+    /// Where the outputs go: `DIR/<stem>.<ext>` and `DIR/<stem>.json` (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
     /// Inputs run at once (each on one thread), as far as their memory estimates fit.
@@ -30,7 +30,7 @@ pub struct BatchArgs {
     /// Output mesh format (obj, gltf, glb). Default: the input's.
     #[arg(long)]
     pub ext: Option<String>,
-    /// Also write DIR/<stem>_surface.png and DIR/<stem>_map.png (as --png of the command).
+    /// Also write `DIR/<stem>_surface.png` and `DIR/<stem>_map.png` (as --png of the command).
     #[arg(long)]
     pub png: bool,
     /// The memory all jobs together may use (bytes, or with K/M/G/T); passed to every run

@@ -15,7 +15,7 @@ pub struct FlattenArgs {
     #[command(flatten)]
     pub input: InputArgs,
     /// The outputs: `-o` holds one texture coordinate per vertex, the layout's bounding
-    /// box scaled uniformly into [0,1]² (aspect kept); `--flat` the raw layout (u, v, 0).
+    /// box scaled uniformly into the unit square (aspect kept); `--flat` the raw layout (u, v, 0).
     #[command(flatten)]
     pub output: OutputArgs,
     /// The boundary: `free` (lengths kept: the least area distortion), `circle`,

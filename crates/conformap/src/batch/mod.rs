@@ -105,7 +105,7 @@ impl BatchTemplate {
 pub struct BatchJob {
     /// The job run on every input (its own paths are ignored).
     pub template: BatchTemplate,
-    /// Where the outputs go: DIR/<stem>.<ext> and DIR/<stem>.json (created if missing).
+    /// Where the outputs go: `DIR/<stem>.<ext>` and `DIR/<stem>.json` (created if missing).
     pub out_dir: PathBuf,
     /// Inputs run at once (each on one thread), as far as their memory estimates fit.
     /// Default: 1.
@@ -116,7 +116,7 @@ pub struct BatchJob {
     pub report: Option<PathBuf>,
     /// Output mesh format (obj, gltf, glb). Default: the input's.
     pub ext: Option<String>,
-    /// Also write DIR/<stem>_surface.png and DIR/<stem>_map.png. Default: false.
+    /// Also write `DIR/<stem>_surface.png` and `DIR/<stem>_map.png`. Default: false.
     pub png: bool,
     /// The memory all jobs together may use (bytes); every run's memory limit. Default:
     /// the memory available at the start.

@@ -106,7 +106,7 @@ pub struct ObjectiveReport {
     /// solution: the search within the forms vanishing at the targets); `None` for genus 1
     /// (nothing to choose) and the other objectives.
     pub search: Option<UniformSearch>,
-    /// The opposite extreme's search when [`FormSearchOptions::compare`].
+    /// The opposite extreme's search when [`crate::forms::FormSearchOptions::compare`].
     pub opposite: Option<UniformSearch>,
     /// Largest over smallest uniformity energy when both extremes are known (1 for genus 1).
     pub max_min_ratio: Option<f64>,
