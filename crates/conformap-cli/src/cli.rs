@@ -5,6 +5,7 @@ use std::ffi::OsString;
 use clap::{Parser, Subcommand};
 use conformap::{BatchJob, BatchTemplate, Choice, Failure, MapJob, Outcome};
 
+use crate::commands::atlas::AtlasArgs;
 use crate::commands::flatten::FlattenArgs;
 use crate::commands::{batch::BatchArgs, render::RenderArgs};
 use crate::commands::{disk::DiskArgs, info::InfoArgs, metrics::MetricsArgs};
@@ -37,6 +38,10 @@ pub enum Command {
     /// the least area distortion), a rectangle or polygon with exact corners, a circle, or
     /// given boundary scale factors or angles.
     Flatten(FlattenArgs),
+    /// A texture atlas of any mesh: every component charted (closed ones cut through 8
+    /// cones and their handles), charts split where they would overlap, all packed into the
+    /// unit square with one texel density; one `vt` per face corner.
+    Atlas(AtlasArgs),
     /// Conformal map of a closed genus-0 mesh onto the unit sphere.
     Sphere(SphereArgs),
     /// Optimal Möbius transformation of a disk or sphere map (uniformity or emphasized area).
@@ -66,6 +71,7 @@ impl Command {
             Self::Metrics(args) => args.to_job().run(),
             Self::Disk(args) => args.to_job().run(),
             Self::Flatten(args) => args.to_job().run(),
+            Self::Atlas(args) => args.to_job().run(),
             Self::Sphere(args) => args.to_job().run(),
             Self::Mobius(args) => args.to_job().run(),
             Self::Global(args) => args.to_job().run(),

@@ -59,8 +59,8 @@ pub use batch::{BatchCommand, BatchJob, BatchTemplate};
 pub use choice::{Choice, UnknownChoice};
 pub use failure::Failure;
 pub use jobs::{
-    disk::DiskJob, flatten::FlattenJob, global::GlobalJob, info::InfoJob, metrics::MetricsJob,
-    mobius::MobiusJob, morph::MorphJob, render::RenderJob, sphere::SphereJob,
+    atlas::AtlasJob, disk::DiskJob, flatten::FlattenJob, global::GlobalJob, info::InfoJob,
+    metrics::MetricsJob, mobius::MobiusJob, morph::MorphJob, render::RenderJob, sphere::SphereJob,
 };
 pub use pipeline::{run_in_memory, run_map, InputOptions, MapJob, Outcome, OutputOptions, Solved};
 pub use report::Report;

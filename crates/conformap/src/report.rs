@@ -44,6 +44,9 @@ pub struct Report {
 /// commands that have it (declared in alphabetical order, the order they are written in).
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Sections {
+    /// The atlas (`atlas`): components, charts, cones, overlap, packing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub atlas: Option<conformap_atlas::AtlasReport>,
     /// The disk with circular holes (`disk` on several boundary loops).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub circle_domain: Option<CircleDomainSection>,

@@ -1,6 +1,7 @@
 //! One module per subcommand: its clap arguments and their conversion into the job of
 //! crate `conformap` (`to_job`), which does the work.
 
+pub mod atlas;
 pub mod batch;
 pub mod disk;
 pub mod flatten;

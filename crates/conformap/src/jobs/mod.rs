@@ -4,6 +4,7 @@
 //! only read and describe; [`render::RenderJob`] draws any map; [`morph::MorphJob`] morphs
 //! through key surfaces.
 
+pub mod atlas;
 pub mod converged;
 pub mod disk;
 pub mod disk_holes;
