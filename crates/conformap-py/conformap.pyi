@@ -115,6 +115,34 @@ def flatten(
         report["flatten"]["aspect"]
     """
 
+def atlas(
+    V: ArrayLike,
+    F: ArrayLike,
+    cones: Optional[int] = None,
+    *,
+    resolution: int = 1024,
+    margin: float = 2.0,
+    strict: bool = False,
+    max_memory: Optional[int] = None,
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32], Report]:
+    """A texture atlas of any mesh, as ``conformap atlas``.
+
+    Every connected component is charted (closed ones cut through ``cones`` cones, 8 by
+    default, and their handles; genus-0 ones with boundary by the free boundary), charts
+    that would overlap are split, and all are packed into the unit square with one texel
+    density and ``margin`` texels between them at ``resolution``.
+
+    Returns ``(uv, F_uv, report)``: ``uv`` (k, 2) texture coordinates in [0, 1]², ``F_uv``
+    (m, 3) their indices per face corner (face ``i`` of ``F`` has ``uv[F_uv[i]]``),
+    ``report`` the CLI's report dict (``report["atlas"]``: components, charts, cones,
+    flipped faces, overlap, packing efficiency).
+
+    Example::
+
+        uv, F_uv, report = conformap.atlas(V, F)
+        report["atlas"]["overlap"]["covered_twice"]   # 0
+    """
+
 def sphere_map(
     V: ArrayLike,
     F: ArrayLike,

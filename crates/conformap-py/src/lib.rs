@@ -11,6 +11,7 @@
 //! - [`errors`]: `ConformapError` (a `ValueError`) and `NumericalError` (a
 //!   `RuntimeError`), from the CLI's failures.
 //! - [`maps`]: `disk_map`, `sphere_map`.
+//! - [`atlas`]: `atlas` (a texture atlas: `uv`, `F_uv`).
 //! - [`flatten`]: `flatten` (boundary first flattening; boundary values in memory).
 //! - [`mobius`]: `mobius` (the map and the region in memory).
 //! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
@@ -18,6 +19,7 @@
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
 
 pub mod arrays;
+pub mod atlas;
 pub mod errors;
 pub mod flatten;
 pub mod global;
@@ -38,6 +40,7 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
     m.add_function(wrap_pyfunction!(flatten::flatten, m)?)?;
+    m.add_function(wrap_pyfunction!(atlas::atlas, m)?)?;
     m.add_function(wrap_pyfunction!(mobius::mobius, m)?)?;
     m.add_function(wrap_pyfunction!(global::global_map, m)?)?;
     m.add_function(wrap_pyfunction!(morph::morph, m)?)?;

@@ -54,3 +54,17 @@ def test_bad_arguments_raise_conformap_error():
     S, G = conformap.read_mesh(FIXTURES / "spot.obj")
     with pytest.raises(conformap.ConformapError, match="conformap sphere"):
         conformap.flatten(S, G)
+
+
+def test_atlas_of_spot_matches_cli_and_is_overlap_free(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    uv, F_uv, report = conformap.atlas(V, F)
+    code, cli, err = run_cli(["atlas", str(FIXTURES / "spot.obj"), "-o", str(tmp_path / "a.obj")], tmp_path)
+    assert code == 0, err
+    assert F_uv.shape == F.shape
+    assert uv.min() >= 0.0 and uv.max() <= 1.0
+    assert report["atlas"]["overlap"]["covered_twice"] == cli["atlas"]["overlap"]["covered_twice"] == 0
+    assert report["atlas"]["area_spread"] == pytest.approx(cli["atlas"]["area_spread"], rel=1e-12)
+    p = uv[F_uv]
+    signed = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0])
+    assert np.all(signed > 0)  # no face turned over
