@@ -55,11 +55,43 @@ pub fn check_command_outputs(
     check_outputs(&outputs, &inputs)
 }
 
+/// Whether `format` can hold what `flag` writes: `-o` a mesh with texture coordinates
+/// (OBJ, glTF, GLB, PLY), `--flat` a mesh (those, GIfTI and FreeSurfer surfaces); STL and
+/// OFF are read only. A usage error (exit 2) before anything is read or computed.
+fn check_writable(flag: &str, path: &Path, format: Format) -> Result<(), Failure> {
+    let texture = matches!(
+        format,
+        Format::Obj | Format::Gltf | Format::Glb | Format::Ply
+    );
+    let surface = texture || matches!(format, Format::Gifti | Format::FreeSurfer);
+    let ok = if flag == "-o" { texture } else { surface };
+    if ok {
+        return Ok(());
+    }
+    Err(Failure::Usage(format!(
+        "{flag} {}: this format cannot hold {}; write {} instead",
+        path.display(),
+        if flag == "-o" {
+            "texture coordinates"
+        } else {
+            "the map as a surface"
+        },
+        if flag == "-o" {
+            ".obj, .ply, .gltf or .glb (the map itself with --flat as .surf.gii or a \
+             FreeSurfer surface)"
+        } else {
+            ".obj, .ply, .gltf, .glb, .surf.gii or a FreeSurfer surface"
+        }
+    )))
+}
+
 /// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`.
 pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Result<(), Failure> {
     for (k, &(flag, path, mesh)) in outputs.iter().enumerate() {
         if mesh {
-            Format::from_path(path).map_err(|e| Failure::Usage(format!("{flag}: {e}")))?;
+            let format =
+                Format::from_path(path).map_err(|e| Failure::Usage(format!("{flag}: {e}")))?;
+            check_writable(flag, path, format)?;
         }
         let key = normalized(path);
         if let Some(input) = inputs.iter().find(|i| normalized(i) == key) {
