@@ -52,8 +52,8 @@ pub enum Command {
     /// Draw a map of a mesh (ours or another tool's): the surface with a checkerboard, the
     /// flat map coloured by distortion, or the angle-distortion histogram.
     Render(RenderArgs),
-    /// Run `disk`, `sphere`, `global` or `flatten` over many meshes: one JSON line per
-    /// input, a summary line.
+    /// Run `disk`, `sphere`, `global`, `flatten` or `atlas` over many meshes: one JSON line
+    /// per input, a summary line.
     Batch(BatchArgs),
     /// Morph through two or more disk-like surfaces with landmarks (CEM §6): S1's mesh at
     /// every frame, on each key surface at its key frame.
@@ -107,6 +107,7 @@ pub fn batch_job(args: &BatchArgs) -> Result<BatchJob, Failure> {
         Command::Sphere(a) => BatchTemplate::Sphere(a.to_job()),
         Command::Global(a) => BatchTemplate::Global(a.to_job()),
         Command::Flatten(a) => BatchTemplate::Flatten(a.to_job()),
+        Command::Atlas(a) => BatchTemplate::Atlas(a.to_job()),
         _ => return Err(Failure::Usage(format!("`{name}` cannot run in a batch"))),
     };
     let mut job = BatchJob::new(template, &args.out_dir, args.inputs.clone()).with_jobs(args.jobs);

@@ -125,3 +125,27 @@ fn two_components_share_the_square() {
     assert_eq!(r["atlas"]["cones"], 8);
     check_atlas(&r, &out, 1267 + 5856);
 }
+
+#[test]
+fn batch_runs_atlas_as_the_single_command_does() {
+    let d = tmpdir("atlas-batch");
+    let dir = d.join("out");
+    conformap_ok(&[
+        "batch",
+        "--command",
+        "atlas",
+        "--out-dir",
+        s(&dir),
+        s(&fixture("spot.obj")),
+        s(&fixture("eightsim.obj")),
+    ]);
+    let single = d.join("spot.obj");
+    conformap_ok(&["atlas", s(&fixture("spot.obj")), "-o", s(&single)]);
+    assert_eq!(
+        std::fs::read(dir.join("spot.obj")).expect("batch output"),
+        std::fs::read(&single).expect("single output")
+    );
+    let r = json(&dir.join("eightsim.json"));
+    assert_eq!(r["atlas"]["flipped"], 0);
+    assert_eq!(r["atlas"]["overlap"]["covered_twice"], 0);
+}

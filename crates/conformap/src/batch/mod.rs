@@ -27,7 +27,9 @@ use serde_json::{json, Value};
 
 use crate::batch::inputs::{collect_inputs, BatchInput};
 use crate::failure::Failure;
-use crate::jobs::{disk::DiskJob, flatten::FlattenJob, global::GlobalJob, sphere::SphereJob};
+use crate::jobs::{
+    atlas::AtlasJob, disk::DiskJob, flatten::FlattenJob, global::GlobalJob, sphere::SphereJob,
+};
 use crate::pipeline::context::{self, MemoryBudget, RunContext};
 use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, OutputOptions};
 use crate::report::ms_since;
@@ -45,6 +47,8 @@ crate::choice! {
         Global = "global",
         /// `conformap flatten` (boundary first flattening: free boundary by default).
         Flatten = "flatten",
+        /// `conformap atlas` (a texture atlas of any mesh; seamed outputs).
+        Atlas = "atlas",
     }
 }
 
@@ -60,6 +64,8 @@ pub enum BatchTemplate {
     Global(GlobalJob),
     /// A boundary first flattening.
     Flatten(FlattenJob),
+    /// A texture atlas.
+    Atlas(AtlasJob),
 }
 
 impl BatchTemplate {
@@ -71,6 +77,7 @@ impl BatchTemplate {
             BatchCommand::Sphere => Self::Sphere(SphereJob::new(input, output)),
             BatchCommand::Global => Self::Global(GlobalJob::new(input, output)),
             BatchCommand::Flatten => Self::Flatten(FlattenJob::new(input, output)),
+            BatchCommand::Atlas => Self::Atlas(AtlasJob::new(input, output)),
         }
     }
 
@@ -81,6 +88,7 @@ impl BatchTemplate {
             Self::Sphere(j) => j,
             Self::Global(j) => j,
             Self::Flatten(j) => j,
+            Self::Atlas(j) => j,
         }
     }
 
@@ -92,6 +100,7 @@ impl BatchTemplate {
             Self::Sphere(j) => (&mut j.input, &mut j.output),
             Self::Global(j) => (&mut j.input, &mut j.output),
             Self::Flatten(j) => (&mut j.input, &mut j.output),
+            Self::Atlas(j) => (&mut j.input, &mut j.output),
         };
         *i = input;
         *o = output;
