@@ -1,11 +1,16 @@
 //! A whole atlas: every connected component charted, the charts packed into `[0,1]²` with
 //! one texel density, one texture coordinate per face corner of the input.
 
-use conformap_mesh::TriMesh;
+use conformap_mesh::{triangle_area, TriMesh};
 use conformap_metrics::{raster_overlap, RasterFrame, RasterOverlap, OVERLAP_RESOLUTION};
+use conformap_operators::planar;
+use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::chart::{chart_component, chart_quality, split_overlapping, Chart, ChartQuality, Piece};
+use crate::chart::{
+    chart_component, chart_quality, flipped_corner_faces, split_overlapping, Chart, ChartQuality,
+    Piece,
+};
 use crate::cones::ConeOptions;
 use crate::error::AtlasError;
 use crate::pack::{pack_charts, PackOptions, Packing};
@@ -264,28 +269,20 @@ fn report(
 ) -> AtlasReport {
     let tris = (0..faces.len()).map(|f| [uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]);
     let overlap = raster_overlap(tris.clone(), OVERLAP_RESOLUTION, RasterFrame::UnitSquare);
-    let (mut a3, mut a2) = (
-        Vec::with_capacity(faces.len()),
-        Vec::with_capacity(faces.len()),
-    );
-    for (f, t) in faces.iter().enumerate() {
-        let p = t.map(|v| positions[v as usize]);
-        let (u, v) = (
-            [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
-            [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
-        );
-        a3.push(
-            0.5 * ((u[1] * v[2] - u[2] * v[1]).powi(2)
-                + (u[2] * v[0] - u[0] * v[2]).powi(2)
-                + (u[0] * v[1] - u[1] * v[0]).powi(2))
-            .sqrt(),
-        );
-        let q = [uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]];
-        a2.push(
-            0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
-                - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])),
-        );
-    }
+    // per face: 3D area and signed texture area (the metrics crate needs one validated
+    // mesh; an atlas's input may be several)
+    let corner: Vec<Complex64> = uv.iter().map(|p| Complex64::new(p[0], p[1])).collect();
+    let a3: Vec<f64> = faces
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| positions[v as usize]);
+            triangle_area(p[0], p[1], p[2])
+        })
+        .collect();
+    let a2: Vec<f64> = corner
+        .chunks_exact(3)
+        .map(|q| planar::triangle_signed_area(q[0], q[1], q[2]))
+        .collect();
     let (s3, s2) = (
         a3.iter().sum::<f64>(),
         a2.iter().map(|a| a.abs()).sum::<f64>(),
@@ -309,7 +306,7 @@ fn report(
         components: charts.len(),
         charts: charts.iter().map(|c| c.pieces.len()).sum(),
         cones: charts.iter().map(|c| c.chart.cones.cones.len()).sum(),
-        flipped: a2.iter().filter(|&&a| a <= 0.0).count(),
+        flipped: flipped_corner_faces(&corner),
         area_spread,
         angle_mean_deg,
         seam_log_ratio_mean: seams.0,

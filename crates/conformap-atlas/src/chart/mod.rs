@@ -21,6 +21,7 @@ use num_complex::Complex64;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
+pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use split::{split_overlapping, Piece, MAX_SPLIT_DEPTH};
 

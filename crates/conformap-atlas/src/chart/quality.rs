@@ -2,6 +2,7 @@
 //! distortion, flipped faces and seam length agreement.
 
 use conformap_mesh::{CutMesh, TriMesh};
+use conformap_metrics::{corner_map_metrics, MetricsOptions};
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -21,62 +22,19 @@ pub struct ChartQuality {
     pub seam_log_ratio_max: f64,
 }
 
-fn angles3(p: [[f64; 3]; 3]) -> [f64; 3] {
-    let d = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let ang = |u: [f64; 3], v: [f64; 3]| {
-        let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-        let c = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt().atan2(dot)
-    };
-    [
-        ang(d(p[0], p[1]), d(p[0], p[2])),
-        ang(d(p[1], p[2]), d(p[1], p[0])),
-        ang(d(p[2], p[0]), d(p[2], p[1])),
-    ]
-}
-
-/// Measures the layout `uv` (one point per vertex of `cut.mesh`) of `mesh`'s faces.
+/// Measures the layout `uv` (one point per vertex of `cut.mesh`) of `mesh`'s faces: the
+/// area spread and angle distortion are `conformap-metrics`' (`area_distortion_log.sd`,
+/// `angle_distortion_deg.mean` of [`corner_map_metrics`]); flips are counted as they stand
+/// (no orientation fix: an atlas must be counter-clockwise).
 pub fn chart_quality(mesh: &TriMesh, cut: &CutMesh, uv: &[Complex64]) -> ChartQuality {
-    let lift = |z: Complex64| [z.re, z.im, 0.0];
-    let (mut a3, mut a2) = (Vec::new(), Vec::new());
-    let (mut angle_sum, mut flipped) = (0.0, 0usize);
-    for (f, t) in mesh.faces().iter().enumerate() {
-        let c = cut.mesh.faces()[f];
-        let p = t.map(|v| mesh.positions()[v as usize]);
-        let q = c.map(|v| uv[v as usize]);
-        let area3 = 0.5 * {
-            let (u, v) = (
-                [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]],
-                [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]],
-            );
-            ((u[1] * v[2] - u[2] * v[1]).powi(2)
-                + (u[2] * v[0] - u[0] * v[2]).powi(2)
-                + (u[0] * v[1] - u[1] * v[0]).powi(2))
-            .sqrt()
-        };
-        let (e1, e2) = (q[1] - q[0], q[2] - q[0]);
-        let area2 = 0.5 * (e1.re * e2.im - e1.im * e2.re);
-        if area2 <= 0.0 {
-            flipped += 1;
-        }
-        a3.push(area3);
-        a2.push(area2.abs());
-        let (x, y) = (angles3(p), angles3(q.map(lift)));
-        angle_sum += (0..3).map(|k| (x[k] - y[k]).abs()).sum::<f64>();
-    }
-    let (s3, s2) = (a3.iter().sum::<f64>(), a2.iter().sum::<f64>());
-    let logs: Vec<f64> = a3
+    let corner: Vec<Complex64> = cut
+        .mesh
+        .faces()
         .iter()
-        .zip(&a2)
-        .map(|(&x, &y)| ((y / s2).max(f64::MIN_POSITIVE) / (x / s3)).ln())
+        .flat_map(|t| t.map(|v| uv[v as usize]))
         .collect();
-    let mean = logs.iter().sum::<f64>() / logs.len().max(1) as f64;
-    let sd =
-        (logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / logs.len().max(1) as f64).sqrt();
+    let (area_spread, angle_mean_deg) = spread_and_angle(mesh, &corner);
+    let flipped = flipped_corner_faces(&corner);
     // seams: an input edge whose two half-edges sit on different cut vertices
     let opp = mesh.opposite_halfedges();
     let (mut seam_sum, mut seam_max, mut seams) = (0.0f64, 0.0f64, 0usize);
@@ -103,10 +61,30 @@ pub fn chart_quality(mesh: &TriMesh, cut: &CutMesh, uv: &[Complex64]) -> ChartQu
         seams += 1;
     }
     ChartQuality {
-        area_spread: sd,
-        angle_mean_deg: (angle_sum / (3 * mesh.num_faces()).max(1) as f64).to_degrees(),
+        area_spread,
+        angle_mean_deg,
         flipped,
         seam_log_ratio_mean: seam_sum / seams.max(1) as f64,
         seam_log_ratio_max: seam_max,
     }
+}
+
+/// The area spread and mean angle distortion (degrees) of a per-corner map, as
+/// `conformap-metrics` measures them; NaN if the map cannot be judged (not finite).
+fn spread_and_angle(mesh: &TriMesh, corner: &[Complex64]) -> (f64, f64) {
+    match corner_map_metrics(mesh, corner, &MetricsOptions::DEFAULT) {
+        Ok(m) => (m.area_distortion_log.sd, m.angle_distortion_deg.mean),
+        Err(_) => (f64::NAN, f64::NAN),
+    }
+}
+
+/// Faces of a per-corner map (`corner[3 f + k]`) whose image is not counter-clockwise.
+pub(crate) fn flipped_corner_faces(corner: &[Complex64]) -> usize {
+    corner
+        .chunks_exact(3)
+        .filter(|q| {
+            let (e1, e2) = (q[1] - q[0], q[2] - q[0]);
+            e1.re * e2.im - e1.im * e2.re <= 0.0
+        })
+        .count()
 }
