@@ -55,6 +55,24 @@ fn check_atlas(report: &serde_json::Value, out: &std::path::Path, faces: usize) 
     assert!(vt
         .iter()
         .all(|p| (0.0..=1.0).contains(&p[0]) && (0.0..=1.0).contains(&p[1])));
+    // measured on the written file: no texel of a 1024² texture covered twice, no face
+    // spread across the texture
+    let tris: Vec<[[f64; 2]; 3]> = f.iter().map(|t| [vt[t[0]], vt[t[1]], vt[t[2]]]).collect();
+    let o = conformap_metrics::raster_overlap(
+        tris.iter().copied(),
+        1024,
+        conformap_metrics::RasterFrame::UnitSquare,
+    );
+    assert_eq!(o.covered_twice, 0, "{o:?}");
+    assert!(o.covered > 100_000, "{o:?}");
+    for t in &tris {
+        for k in 0..2 {
+            let (lo, hi) = t
+                .iter()
+                .fold((1.0f64, 0.0f64), |(a, b), p| (a.min(p[k]), b.max(p[k])));
+            assert!(hi - lo < 0.1, "a face spans {} of the texture", hi - lo);
+        }
+    }
     // every face counter-clockwise in the texture
     for t in &f {
         let (a, b, c) = (vt[t[0]], vt[t[1]], vt[t[2]]);

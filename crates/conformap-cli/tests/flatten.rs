@@ -142,65 +142,52 @@ fn a_given_constant_scale_only_scales_the_free_boundary() {
     }
 }
 
+/// `conformap flatten woody.obj -o OUT EXTRA…`, expected to fail with `code` and a message
+/// holding `needle`; returns its stderr.
+fn flatten_fails(out: &std::path::Path, extra: &[&str], code: i32, needle: &str) -> String {
+    let mesh = fixture("woody.obj");
+    let mut args = vec!["flatten", s(&mesh), "-o", s(out)];
+    args.extend_from_slice(extra);
+    let o = conformap(&args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(code), "{extra:?}: {err}");
+    assert!(err.contains(needle), "{extra:?}: `{needle}` not in {err}");
+    assert!(!out.exists(), "{extra:?}: nothing written on error");
+    err
+}
+
 #[test]
 fn bad_boundaries_and_topologies_are_refused_with_what_to_do() {
     let d = tmpdir("flatten-bad");
     let out = d.join("uv.obj");
-    // corners without a rectangle: usage
-    let o = conformap(&[
-        "flatten",
-        s(&fixture("woody.obj")),
-        "-o",
-        s(&out),
-        "--corners",
-        "1,2,3,4",
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    // an unknown boundary: usage, naming the spellings
-    let o = conformap(&[
-        "flatten",
-        s(&fixture("woody.obj")),
-        "-o",
-        s(&out),
-        "--boundary",
-        "square",
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    // a missing boundary file: bad input, nothing written
-    let o = conformap(&[
-        "flatten",
-        s(&fixture("woody.obj")),
-        "-o",
-        s(&out),
-        "--boundary",
-        &format!("polygon:{}", s(&d.join("none.txt"))),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("hint:"));
-    // a polygon file whose line is wrong: file and line named
+    // corners or an aspect without a rectangle, an unknown boundary: usage
+    flatten_fails(&out, &["--corners", "1,2,3,4"], 2, "--boundary rectangle");
+    flatten_fails(
+        &out,
+        &["--boundary", "rectangle", "--aspect=-1"],
+        2,
+        "aspect",
+    );
+    flatten_fails(&out, &["--boundary", "square"], 2, "square");
+    // a missing boundary file: bad input with a hint
+    let missing = format!("polygon:{}", s(&d.join("none.txt")));
+    let err = flatten_fails(&out, &["--boundary", &missing], 1, "none.txt");
+    assert!(err.lines().any(|l| l.starts_with("hint:")), "{err}");
+    // a polygon file with a bad line: the file and its line, the hint on its own line
     let bad = d.join("bad.txt");
     std::fs::write(&bad, "0 120\n17 x\n").expect("write");
-    let o = conformap(&[
-        "flatten",
-        s(&fixture("woody.obj")),
-        "-o",
-        s(&out),
-        "--boundary",
-        &format!("polygon:{}", s(&bad)),
-    ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("bad.txt") && stderr(&o).contains('2'),
-        "{}",
-        stderr(&o)
-    );
+    let spec = format!("polygon:{}", s(&bad));
+    let err = flatten_fails(&out, &["--boundary", &spec], 1, "bad.txt:2:");
+    assert!(err.lines().any(|l| l.starts_with("hint:")), "{err}");
     // a closed surface: the hint names `conformap sphere`; genus 2: `conformap global`
-    let o = conformap(&["flatten", s(&fixture("spot.obj")), "-o", s(&out)]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("conformap sphere"), "{}", stderr(&o));
-    let o = conformap(&["flatten", s(&fixture("eightsim.obj")), "-o", s(&out)]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("conformap global"), "{}", stderr(&o));
+    for (mesh, command) in [
+        ("spot.obj", "conformap sphere"),
+        ("eightsim.obj", "conformap global"),
+    ] {
+        let o = conformap(&["flatten", s(&fixture(mesh)), "-o", s(&out)]);
+        assert_eq!(o.status.code(), Some(1));
+        assert!(stderr(&o).contains(command), "{}", stderr(&o));
+    }
     assert!(!out.exists(), "nothing written on error");
 }
 

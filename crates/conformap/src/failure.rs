@@ -182,7 +182,14 @@ impl From<conformap_disk::DiskError> for Failure {
             | E::NonFiniteBoundaryValue { .. }
             | E::BadCorners { .. }
             | E::TurningSum { .. }
-            | E::BoundaryFile { .. } => Self::BadInput(e.to_string(), None),
+            | E::BoundaryFile { .. } => {
+                let text = e.to_string();
+                // these messages carry their hint inline: it goes on its own `hint:` line
+                match text.split_once("; hint: ") {
+                    Some((what, hint)) => Self::BadInput(what.to_string(), Some(hint.to_string())),
+                    None => Self::BadInput(text, None),
+                }
+            }
             other => Self::Numerical(other.to_string()),
         }
     }
