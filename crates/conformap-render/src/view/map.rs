@@ -5,6 +5,7 @@
 use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
+use super::Canvas;
 use super::{clamp_barycentric, colorbar, interpolate, FaceTex, TexMap};
 use crate::camera::Camera;
 use crate::error::RenderError;
@@ -207,14 +208,12 @@ pub(crate) fn render_map(
     coords: &MapCoords<'_>,
     options: &RenderOptions,
 ) -> Result<Image, RenderError> {
-    let ss = options.supersample as usize;
-    let side = options.size as usize * ss;
-    let quantity = !options.color.is_texture();
-    let bar = if quantity {
-        colorbar::width(options.size) as f64 * ss as f64
-    } else {
-        0.0
-    };
+    let Canvas {
+        ss,
+        side,
+        quantity,
+        bar,
+    } = Canvas::new(options);
     let (points, per_corner) = map_points(mesh, coords);
     let sphere = coords.domain() == Domain::Sphere;
     let camera = map_camera(sphere, options, &points, side as f64, bar)?;

@@ -127,6 +127,36 @@ impl FaceTex {
     }
 }
 
+/// The pixel geometry both views share: supersampling, the supersampled side, whether a
+/// quantity (with its colour bar) is drawn rather than a texture, and the bar's width.
+pub(crate) struct Canvas {
+    /// Supersampling factor.
+    pub ss: usize,
+    /// Side of the supersampled image, pixels.
+    pub side: usize,
+    /// Whether the colour is a quantity (a colour bar is drawn).
+    pub quantity: bool,
+    /// Width of the colour bar, supersampled pixels (0 without one).
+    pub bar: f64,
+}
+
+impl Canvas {
+    pub(crate) fn new(options: &crate::RenderOptions) -> Self {
+        let ss = options.supersample as usize;
+        let quantity = !options.color.is_texture();
+        Self {
+            ss,
+            side: options.size as usize * ss,
+            quantity,
+            bar: if quantity {
+                colorbar::width(options.size) as f64 * ss as f64
+            } else {
+                0.0
+            },
+        }
+    }
+}
+
 /// `Σ b_k x_k` for three points.
 #[inline]
 pub(crate) fn interpolate(b: [f64; 3], x: [[f64; 3]; 3]) -> [f64; 3] {

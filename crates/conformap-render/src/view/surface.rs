@@ -4,6 +4,7 @@
 use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 
+use super::Canvas;
 use super::{clamp_barycentric, colorbar, FaceTex, TexMap};
 use crate::camera::Camera;
 use crate::error::RenderError;
@@ -71,14 +72,12 @@ pub(crate) fn render_surface(
     coords: &MapCoords<'_>,
     options: &RenderOptions,
 ) -> Result<Image, RenderError> {
-    let ss = options.supersample as usize;
-    let side = options.size as usize * ss;
-    let quantity = !options.color.is_texture();
-    let bar = if quantity {
-        colorbar::width(options.size) as f64 * ss as f64
-    } else {
-        0.0
-    };
+    let Canvas {
+        ss,
+        side,
+        quantity,
+        bar,
+    } = Canvas::new(options);
     let (normal_sum, vertex_normals) = normals(mesh);
     let camera = Camera::principal(
         mesh.positions(),
