@@ -160,6 +160,25 @@ def sphere_map(
         S, report = conformap.sphere_map(*conformap.read_mesh("fixtures/spot.obj"), mobius="uniform")
     """
 
+def sphere_uv(
+    S: ArrayLike,
+    F: ArrayLike,
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """The texture of a sphere map, as ``conformap sphere -o`` writes it.
+
+    Returns ``(uv, F_uv)``: equirectangular coordinates ``u = (atan2(y, x) + π)/2π``,
+    ``v = (asin z + π/2)/π``, one row of ``F_uv`` per face. ``u`` is continuous within each
+    face: a face crossing the seam meridian keeps its corners together (some ``u`` in
+    (1, 1.25); sample with REPEAT wrapping), and faces at the poles fan out from them.
+
+    Example::
+
+        V, F = conformap.read_mesh("fixtures/spot.obj")
+        S, report = conformap.sphere_map(V, F)
+        uv, F_uv = conformap.sphere_uv(S, F)
+        conformap.write_mesh("spot_sphere.obj", V, F, uv=uv, F_uv=F_uv)
+    """
+
 def mobius(
     V: ArrayLike,
     F: ArrayLike,

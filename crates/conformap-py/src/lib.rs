@@ -27,6 +27,7 @@ pub mod maps;
 pub mod meshes;
 pub mod mobius;
 pub mod morph;
+pub mod sphere_uv;
 
 use pyo3::prelude::*;
 
@@ -39,6 +40,7 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", py.get_type::<errors::NumericalError>())?;
     m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
+    m.add_function(wrap_pyfunction!(sphere_uv::sphere_uv, m)?)?;
     m.add_function(wrap_pyfunction!(flatten::flatten, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::atlas, m)?)?;
     m.add_function(wrap_pyfunction!(mobius::mobius, m)?)?;

@@ -8,13 +8,17 @@ use conformap_mesh::TriMesh;
 use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
 use conformap_operators::PeakMemory;
 use conformap_sphere::{
-    equirectangular_uv, from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius,
-    sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport, EMPHASIZE_MAX_AREA_SCALE,
+    from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics,
+    sphere_points_from_corner_uv, MobiusObjective, MobiusOptions, MobiusReport,
+    EMPHASIZE_MAX_AREA_SCALE,
 };
 
 use crate::failure::Failure;
 use crate::jobs::param::{on_unit_sphere, read_map_file, read_region, MapFile};
-use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
+use crate::jobs::sphere::sphere_tex_coords;
+use crate::pipeline::{
+    disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved, TexCoords,
+};
 use crate::report::{ms_since, MetricsSection, ParamInfo, SolverSection, StageTimings};
 
 /// The default of [`MobiusJob::max_area_scale`]: the library's
@@ -109,7 +113,7 @@ impl MobiusJob {
 
 /// The moved map of one domain, before it becomes a [`Solved`].
 struct Moved {
-    uv: Vec<[f64; 2]>,
+    uv: TexCoords,
     flat: Vec<[f64; 3]>,
     report: MobiusReport,
     metrics: MetricsSection,
@@ -264,7 +268,7 @@ impl MobiusJob {
         Ok(Solved {
             picture_domain: None,
             method: format!("newton-{}", mobius.objective),
-            uv: moved.uv.into(),
+            uv: moved.uv,
             flat: (moved.flat, None),
             solver,
             param: Some(ParamInfo {
@@ -313,7 +317,7 @@ impl MobiusJob {
             .with("cross_ratio_log", cr_after)
             .with("cross_ratio_log_before", cr_before);
         Ok(Moved {
-            uv: disk_uv(&best.map),
+            uv: disk_uv(&best.map).into(),
             flat: planar_points(&best.map),
             report: best.report,
             metrics,
@@ -330,11 +334,19 @@ impl MobiusJob {
         options: &MobiusOptions,
     ) -> Result<Moved, Failure> {
         let on_sphere = param.positions.iter().all(on_unit_sphere);
+        let corners = param
+            .corner_uv
+            .as_ref()
+            .and_then(|c| sphere_points_from_corner_uv(mesh, &c.texcoords, &c.faces));
         let (points, from): (Vec<[f64; 3]>, &'static str) = match (&param.uv, on_sphere) {
             (_, true) => (param.positions.clone(), "sphere positions"),
             (Some(uv), false) => (
                 uv.iter().map(|&t| from_equirectangular_uv(t)).collect(),
                 "equirectangular texture coordinates",
+            ),
+            (None, false) if corners.is_some() => (
+                corners.unwrap_or_default(),
+                "equirectangular texture coordinates per corner",
             ),
             (None, false) => {
                 return Err(Failure::BadInput(
@@ -356,7 +368,7 @@ impl MobiusJob {
             .with("angle_distortion_deg_before", before.angle_distortion_deg)
             .with("cross_ratio_log_before", before.cross_ratio_log);
         Ok(Moved {
-            uv: best.points.iter().map(|&p| equirectangular_uv(p)).collect(),
+            uv: sphere_tex_coords(mesh, &best.points).map_err(|e| self.fail(e))?,
             flat: best.points,
             report: best.report,
             metrics,

@@ -4,9 +4,11 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use conformap_mesh::TriMesh;
 use conformap_render::{
     angle_histogram, histogram_svg, render, ColorBy, MapCoords, RenderOptions, UvValues, View,
 };
+use conformap_sphere::sphere_points_from_corner_uv;
 use num_complex::Complex64;
 
 use crate::failure::Failure;
@@ -203,15 +205,26 @@ impl Coords {
         }
     }
 
-    /// The map in `file` for `domain`; `closed_genus0` says how `auto` reads texture
-    /// coordinates.
-    fn from_file(file: MapFile, domain: ParamDomain, closed_genus0: bool) -> Self {
+    /// The map in `file` for `domain`; `closed_genus0` (the mesh, when it is closed and
+    /// genus 0) says how `auto` reads texture coordinates: per vertex as equirectangular,
+    /// per corner as equirectangular when every vertex's corners name one sphere point
+    /// (as `sphere -o` writes them), else as a seamed planar map (an atlas).
+    fn from_file(file: MapFile, domain: ParamDomain, closed_genus0: Option<&TriMesh>) -> Self {
         let on_sphere = file.positions.iter().all(on_unit_sphere);
+        let corner_points = match (closed_genus0, &file.corner_uv) {
+            (Some(mesh), Some(c)) if domain != ParamDomain::Plane && !on_sphere => {
+                sphere_points_from_corner_uv(mesh, &c.texcoords, &c.faces)
+            }
+            _ => None,
+        };
+        if let Some(points) = corner_points {
+            return Self::Sphere(points);
+        }
         let sphere = match domain {
             ParamDomain::Plane => false,
             ParamDomain::Sphere => true,
             ParamDomain::Auto => match (&file.uv, &file.corner_uv) {
-                (Some(_), _) => closed_genus0,
+                (Some(_), _) => closed_genus0.is_some(),
                 (None, Some(_)) => false,
                 (None, None) => on_sphere,
             },
@@ -258,7 +271,7 @@ fn run(args: &RenderJob) -> Result<Outcome, Failure> {
     let mesh = &loaded.mesh;
     let file = read_map_file(&args.param, &args.mesh, mesh)?;
     let closed_genus0 = mesh.boundary_loops().is_empty() && mesh.genus() == Some(0);
-    let coords = Coords::from_file(file, args.domain, closed_genus0);
+    let coords = Coords::from_file(file, args.domain, closed_genus0.then_some(mesh));
     let options = args.options();
     context::stage(format!("drawing {}", args.output.display()));
     let mut staged = Staged::new();
