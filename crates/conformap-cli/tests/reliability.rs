@@ -1,5 +1,5 @@
 //! Wrong domains, maps `metrics` must read, staging under signals, morph's frame
-//! directory and broken map files, through the binary.
+//! directory, topology hints and broken map files, through the binary.
 
 #![allow(clippy::unwrap_used)] // tests: a failed unwrap is a failed test
 
@@ -37,6 +37,29 @@ fn thin_annulus(path: &Path, n: usize) {
         .flat_map(|i| {
             let (a, b) = (i, (i + 1) % n);
             [[a, n + b, b], [a, n + a, n + b]]
+        })
+        .collect();
+    write_obj(path, &points, &faces);
+}
+
+/// A closed torus of revolution (genus 1), `n × m` quads split in two.
+fn torus(path: &Path, n: usize, m: usize) {
+    let mut points = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (u, v) = (TAU * i as f64 / n as f64, TAU * j as f64 / m as f64);
+            let r = 2.0 + 0.7 * v.cos();
+            points.push([r * u.cos(), r * u.sin(), 0.7 * v.sin()]);
+        }
+    }
+    let id = |i: usize, j: usize| (i % n) * m + j % m;
+    let faces: Vec<[usize; 3]> = (0..n)
+        .flat_map(|i| (0..m).map(move |j| (i, j)))
+        .flat_map(|(i, j)| {
+            [
+                [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+            ]
         })
         .collect();
     write_obj(path, &points, &faces);
@@ -283,6 +306,40 @@ fn morph_frame_directory_is_created_and_cleared_of_stale_frames() {
             "notes.txt"
         ]
     );
+}
+
+#[test]
+fn every_topology_refusal_names_the_command_that_maps_it() {
+    let d = tmpdir("hints");
+    let (torus_obj, annulus, out) = (d.join("torus.obj"), d.join("annulus.obj"), d.join("o.obj"));
+    torus(&torus_obj, 16, 8);
+    thin_annulus(&annulus, 24);
+    let (spot, woody) = (fixture("spot.obj"), fixture("woody.obj"));
+    let two = fixture("bad/two_components.obj");
+    let global = "hint: `conformap global` maps a closed surface of genus 1";
+    let sphere = "hint: `conformap sphere` maps a closed genus-0 surface onto the unit sphere";
+    let disk = "hint: `conformap disk` maps a disk onto the unit disk";
+    let atlas = "hint: `conformap atlas` charts all 2 components";
+    // before: "cut the surface along its handle loops into a disk first"
+    let cases: [(&str, &Path, &str); 9] = [
+        ("disk", &torus_obj, global),
+        ("flatten", &torus_obj, global),
+        ("sphere", &torus_obj, global),
+        ("disk", &spot, sphere),
+        ("flatten", &spot, sphere),
+        ("sphere", &woody, disk),
+        ("global", &woody, disk),
+        ("disk", &two, atlas),
+        ("sphere", &two, atlas),
+    ];
+    for (command, mesh, hint) in cases {
+        refused_with(&[command, s(mesh), "-o", s(&out)], &[hint]);
+    }
+    let help = conformap_ok(&["batch", "--help"]);
+    let help = String::from_utf8_lossy(&help.stdout);
+    for c in ["disk", "sphere", "global", "flatten", "atlas"] {
+        assert!(help.contains(&format!("- {c}:")), "{c} missing in\n{help}");
+    }
 }
 
 #[test]
