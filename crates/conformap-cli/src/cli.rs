@@ -32,7 +32,7 @@ pub enum Command {
     Info(InfoArgs),
     /// Conformal map of a disk-like mesh (one boundary loop) onto the unit disk.
     Disk(DiskArgs),
-    /// Judge a planar map of a mesh (ours or another tool's).
+    /// Judge a map of a mesh (ours or another tool's): planar, seamed, or on the sphere.
     Metrics(MetricsArgs),
     /// Boundary first flattening of a mesh with boundary: a free boundary (lengths kept,
     /// the least area distortion), a rectangle or polygon with exact corners, a circle, or

@@ -1,5 +1,6 @@
-//! `conformap batch --command disk|sphere --out-dir DIR [--jobs N] [--skip-existing]
-//! [--report R.jsonl] MANIFEST|MESH… [-- OPTIONS]`: one map command over many meshes.
+//! `conformap batch --command disk|sphere|global|flatten|atlas --out-dir DIR [--jobs N]
+//! [--skip-existing] [--report R.jsonl] MANIFEST|MESH… [-- OPTIONS]`: one map command over
+//! many meshes.
 //!
 //! Each input runs as the single command would: the [`BatchTemplate`] job with the input's
 //! mesh, `-o DIR/<stem>.<ext>` and `--report DIR/<stem>.json`, run by the same [`run_map`],

@@ -63,7 +63,8 @@ pub(crate) fn map_solved(
         Ok(Solved {
             picture_domain: None,
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
-            summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros),
+            summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros)
+                + &refinement_note(mesh, map, seamed.mesh.as_ref()),
             strict_violation: (folds_outside_zeros > 0).then(|| {
                 format!("{folds_outside_zeros} folded faces lie outside the zeros' clusters")
             }),
@@ -135,6 +136,23 @@ fn summary(mesh: &TriMesh, map: &GlobalMap, at_zeros: usize, outside: usize) -> 
     )
 }
 
+/// What the summary adds when the outputs are written on a refinement of the input
+/// (boundary chords split by the double covering): the written counts.
+fn refinement_note(mesh: &TriMesh, map: &GlobalMap, written: Option<&TriMesh>) -> String {
+    match written {
+        Some(w) => format!(
+            "; written on a refinement of the input ({} boundary chord(s) split): {} \
+             vertices, {} faces, the input's {} vertices first (`conformap metrics` and \
+             `render` read it as it is)",
+            map.split_edges,
+            w.num_vertices(),
+            w.num_faces(),
+            mesh.num_vertices()
+        ),
+        None => String::new(),
+    }
+}
+
 /// The chosen form, in words: the objective and what it reached.
 fn objective_summary(map: &GlobalMap) -> String {
     let o = &map.objective;
@@ -180,7 +198,7 @@ fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> serde_json::Value {
         .input_zeros()
         .map(|z| json!({"vertex": z.vertex, "multiplicity": z.multiplicity}))
         .collect();
-    json!({
+    let mut section = json!({
         "genus": map.genus,
         "boundaries": map.boundaries,
         "double_covered": map.double_covered,
@@ -210,5 +228,14 @@ fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> serde_json::Value {
         "uv_scale": seamed.scale,
         "uv_is": "vt = (layout − uv_offset) · uv_scale: the layout fitted into the unit square",
         "timings_ms": map.timings_ms,
-    })
+    });
+    // only where the outputs are written on a refinement: other reports keep their keys
+    if let Some(w) = &seamed.mesh {
+        section["written_mesh"] = json!({
+            "vertices": w.num_vertices(),
+            "faces": w.num_faces(),
+            "is": "the refinement the outputs are written on (the input's vertices first)",
+        });
+    }
+    section
 }

@@ -1,4 +1,5 @@
-//! `conformap metrics MESH PARAM [--json]`: judge any planar map of a mesh.
+//! `conformap metrics MESH PARAM [--json]`: judge any map of a mesh, planar or on the
+//! sphere.
 
 use std::path::PathBuf;
 
@@ -8,7 +9,7 @@ use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
 use serde_json::json;
 
 use crate::failure::Failure;
-use crate::jobs::param::{read_map_file, PlanarMap};
+use crate::jobs::param::{read_measured_map, sphere_points, MeasuredMap, PlanarMap};
 use crate::pipeline::Outcome;
 use crate::report::InputInfo;
 
@@ -22,7 +23,11 @@ pub struct MetricsJob {
     /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), a seamed map
     /// with texture coordinates per face corner (`f v/vt`, as `global` writes; read as
     /// (u, v) = vt, no circle fits), or a flat mesh without texture coordinates whose
-    /// (x, y) are the map.
+    /// (x, y) are the map. A sphere map is measured on the sphere: unit-sphere positions
+    /// without texture coordinates (`sphere --flat`), or per-vertex texture coordinates of
+    /// a closed genus-0 mesh, read as equirectangular (`sphere -o`). A map file that
+    /// carries its own mesh refining MESH (`global -o` where it split boundary chords) is
+    /// measured on that mesh.
     pub param: PathBuf,
     /// Print JSON instead of text.
     pub json: bool,
@@ -79,56 +84,136 @@ pub fn metrics_report(
     }))
 }
 
+/// The JSON of `conformap metrics --json` for the sphere map `points` of `mesh`: the
+/// metrics of [`conformap_sphere::sphere_metrics`] (angles against the chord triangles,
+/// flips by orientation against the outward normal, area shares), `"domain": "sphere"`.
+///
+/// # Errors
+/// [`Failure::BadInput`] when the map does not fit the mesh (without the param's path).
+pub fn sphere_metrics_report(
+    mesh: &conformap_mesh::TriMesh,
+    mesh_path: &std::path::Path,
+    points: &[[f64; 3]],
+    param: &str,
+    source: &str,
+) -> Result<serde_json::Value, Failure> {
+    let metrics = conformap_sphere::sphere_metrics(mesh, points).map_err(Failure::input)?;
+    Ok(json!({
+        "conformap_version": env!("CARGO_PKG_VERSION"),
+        "command": "metrics",
+        "domain": "sphere",
+        "input": InputInfo::new(mesh_path, mesh),
+        "param": { "path": param, "map_from": source },
+        "metrics": metrics,
+    }))
+}
+
+/// The keys of the text output, planar and sphere, in order.
+const PLANAR_KEYS: [&str; 9] = [
+    "conformal_energy",
+    "dirichlet_energy",
+    "image_area",
+    "flipped_faces",
+    "degenerate_faces",
+    "circle_residual_max",
+    "angle_distortion_deg",
+    "beltrami_abs",
+    "area_distortion_log",
+];
+const SPHERE_KEYS: [&str; 8] = [
+    "radius_residual_max",
+    "flipped_faces",
+    "degenerate_faces",
+    "uniformity_energy",
+    "angle_distortion_deg",
+    "beltrami_abs",
+    "area_distortion_log",
+    "cross_ratio_log",
+];
+
 /// Runs `conformap metrics`: the metrics as text or JSON, for stdout.
 fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
     let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let mesh = &loaded.mesh;
-    let param = read_map_file(&args.param, &args.mesh, mesh)?;
-    let (map, source) = param.planar_map();
-    let value = metrics_report(
-        mesh,
-        &args.mesh,
-        &map,
-        &args.param.display().to_string(),
-        source,
-    )
-    .map_err(|f| f.in_file(&args.param))?;
-    let mut out = String::new();
-    if args.json {
-        out = serde_json::to_string_pretty(&value).unwrap_or_default();
-    } else {
-        let m = &value["metrics"];
-        let mut say = |line: String| {
-            let _ = writeln!(out, "{line}");
-        };
-        say(format!(
-            "map of {} from {} ({source})",
-            args.mesh.display(),
-            args.param.display()
-        ));
-        for key in [
-            "conformal_energy",
-            "dirichlet_energy",
-            "image_area",
-            "flipped_faces",
-            "degenerate_faces",
-            "circle_residual_max",
-        ] {
-            say(format!("{key:22} {}", m[key]));
+    let measured = read_measured_map(&args.param, &args.mesh, &loaded.mesh)?;
+    let mesh = measured.mesh(&loaded.mesh);
+    let param = args.param.display().to_string();
+    let (mut value, source, keys) = match sphere_points(&measured.file, mesh) {
+        Some((points, source)) => (
+            sphere_metrics_report(mesh, &args.mesh, &points, &param, source),
+            source,
+            &SPHERE_KEYS[..],
+        ),
+        None => {
+            let (map, source) = measured.file.planar_map();
+            (
+                metrics_report(mesh, &args.mesh, &map, &param, source),
+                source,
+                &PLANAR_KEYS[..],
+            )
         }
-        say(format!(
-            "{:22} {}",
-            "angle_distortion_deg", m["angle_distortion_deg"]
-        ));
-        say(format!("{:22} {}", "beltrami_abs", m["beltrami_abs"]));
-        say(format!(
-            "{:22} {}",
-            "area_distortion_log", m["area_distortion_log"]
-        ));
-        out.pop();
+    };
+    if let Ok(v) = &mut value {
+        if let Some(own) = own_mesh_note(&measured, &loaded.mesh) {
+            v["param"]["own_mesh"] = own;
+        }
     }
+    let value = value.map_err(|f| f.in_file(&args.param))?;
+    let out = if args.json {
+        serde_json::to_string_pretty(&value).unwrap_or_default()
+    } else {
+        text(args, &value, source, keys)
+    };
     Ok(Outcome {
         stdout: Some(out),
         ..Outcome::default()
     })
+}
+
+/// The report's `param.own_mesh` when the map was measured on its own mesh.
+fn own_mesh_note(
+    measured: &MeasuredMap,
+    given: &conformap_mesh::TriMesh,
+) -> Option<serde_json::Value> {
+    let own = measured.own_mesh.as_ref()?;
+    Some(json!({
+        "vertices": own.num_vertices(),
+        "faces": own.num_faces(),
+        "refines": { "vertices": given.num_vertices(), "faces": given.num_faces() },
+    }))
+}
+
+/// The text output: what was measured, then one line per key.
+fn text(args: &MetricsJob, value: &serde_json::Value, source: &str, keys: &[&str]) -> String {
+    let mut out = String::new();
+    let mut say = |line: String| {
+        let _ = writeln!(out, "{line}");
+    };
+    let domain = if value["domain"] == "sphere" {
+        "sphere map"
+    } else {
+        "map"
+    };
+    say(format!(
+        "{domain} of {} from {} ({source})",
+        args.mesh.display(),
+        args.param.display()
+    ));
+    let own = &value["param"]["own_mesh"];
+    if !own.is_null() {
+        say(format!(
+            "measured on the map's own mesh: {} vertices, {} faces (refining the {} and {} \
+             of {})",
+            own["vertices"],
+            own["faces"],
+            own["refines"]["vertices"],
+            own["refines"]["faces"],
+            args.mesh.display()
+        ));
+    }
+    let m = &value["metrics"];
+    for key in keys {
+        say(format!("{key:22} {}", m[*key]));
+    }
+    out.pop();
+    out
 }

@@ -236,6 +236,7 @@ impl MobiusJob {
                 ))
             }
         };
+        self.check_domain(mesh)?;
         let options = MobiusOptions::DEFAULT.with_max_area_scale(self.max_area_scale);
         let t = Instant::now();
         let moved = match self.domain {
@@ -287,6 +288,48 @@ impl MobiusJob {
                 .then(|| "the Möbius optimization did not converge".to_string()),
             summary,
         })
+    }
+
+    /// Refuses a domain the mesh has no map onto: a sphere map needs a closed genus-0
+    /// mesh, a disk map a mesh with boundary (bad input, exit 1, with the domain or the
+    /// command that fits).
+    fn check_domain(&self, mesh: &TriMesh) -> Result<(), Failure> {
+        let loops = mesh.boundary_loops().len();
+        let genus = mesh.genus();
+        let what = self.input.mesh.display();
+        let refuse = |msg: String, hint: &str| Err(Failure::BadInput(msg, Some(hint.into())));
+        match self.domain {
+            Domain::Sphere if loops > 0 => refuse(
+                format!(
+                    "{what} has {loops} boundary loop(s): --domain sphere moves the sphere map \
+                     of a closed genus-0 mesh, and a mesh with boundary has none"
+                ),
+                "a map of a mesh with boundary is a disk map: rerun with --domain disk",
+            ),
+            Domain::Sphere if genus != Some(0) => refuse(
+                format!(
+                    "{what} is {}: --domain sphere needs a closed genus-0 mesh",
+                    mesh.topology()
+                ),
+                "a closed surface with handles has no sphere map: `conformap global` maps it",
+            ),
+            Domain::Disk if loops == 0 && genus == Some(0) => refuse(
+                format!(
+                    "{what} is closed (no boundary loop): it has no disk map, so --domain disk \
+                     does not fit; its map is a sphere map"
+                ),
+                "rerun with --domain sphere (on the -o or --flat output of `conformap sphere`)",
+            ),
+            Domain::Disk if loops == 0 => refuse(
+                format!(
+                    "{what} is {}: it has no disk map, so --domain disk does not fit",
+                    mesh.topology()
+                ),
+                "`conformap global` maps closed surfaces with handles; the Möbius \
+                 optimization moves disk and sphere maps only",
+            ),
+            _ => Ok(()),
+        }
     }
 
     fn fail(&self, e: impl Into<Failure>) -> Failure {

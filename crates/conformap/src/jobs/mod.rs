@@ -16,6 +16,7 @@ pub mod info;
 pub mod metrics;
 pub mod mobius;
 pub mod morph;
+mod morph_frames;
 pub mod param;
 pub mod render;
 pub mod sphere;

@@ -12,7 +12,7 @@ use conformap_sphere::sphere_points_from_corner_uv;
 use num_complex::Complex64;
 
 use crate::failure::Failure;
-use crate::jobs::param::{on_unit_sphere, read_map_file, MapFile, PlanarMap};
+use crate::jobs::param::{on_unit_sphere, read_measured_map, MapFile, MeasuredMap, PlanarMap};
 use crate::pipeline::pictures::render_failure;
 use crate::pipeline::{check_outputs, context, Outcome, Staged};
 use crate::report::ms_since;
@@ -268,8 +268,9 @@ fn run(args: &RenderJob) -> Result<Outcome, Failure> {
     check_outputs(&[("-o", &args.output, false)], &[&args.mesh, &args.param])?;
     context::stage(format!("reading {}", args.mesh.display()));
     let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let mesh = &loaded.mesh;
-    let file = read_map_file(&args.param, &args.mesh, mesh)?;
+    // a map carrying its own mesh (global's refinement at split chords) is drawn on it
+    let MeasuredMap { file, own_mesh } = read_measured_map(&args.param, &args.mesh, &loaded.mesh)?;
+    let mesh = own_mesh.as_ref().unwrap_or(&loaded.mesh);
     let closed_genus0 = mesh.boundary_loops().is_empty() && mesh.genus() == Some(0);
     let coords = Coords::from_file(file, args.domain, closed_genus0.then_some(mesh));
     let options = args.options();

@@ -15,6 +15,7 @@ pub mod memory;
 pub mod options;
 pub mod outputs;
 pub mod pictures;
+pub mod staging;
 
 use std::path::Path;
 use std::time::Instant;

@@ -7,6 +7,7 @@
 //! hidden sibling of its target and renames them all into place at [`Staged::commit`]; a
 //! failure before the commit removes what was staged, so no output appears.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -17,6 +18,7 @@ use serde::Serialize;
 
 use crate::failure::Failure;
 use crate::pipeline::options::{InputOptions, OutputOptions};
+use crate::pipeline::staging::{self, directory_of};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
@@ -85,16 +87,22 @@ fn check_writable(flag: &str, path: &Path, format: Format) -> Result<(), Failure
     )))
 }
 
-/// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`.
+/// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`, each
+/// path normalized once and each directory probed once (a morph's thousands of frames in
+/// one directory cost one probe), and removes from every output directory the staging
+/// files of runs that were killed ([`staging::remove_stale_staging`]; the watcher is told).
 pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Result<(), Failure> {
-    for (k, &(flag, path, mesh)) in outputs.iter().enumerate() {
+    let inputs: Vec<(PathBuf, &Path)> = inputs.iter().map(|i| (normalized(i), *i)).collect();
+    let mut seen: HashMap<PathBuf, &str> = HashMap::with_capacity(outputs.len());
+    let mut directories: HashSet<PathBuf> = HashSet::new();
+    for &(flag, path, mesh) in outputs {
         if mesh {
             let format =
                 Format::from_path(path).map_err(|e| Failure::Usage(format!("{flag}: {e}")))?;
             check_writable(flag, path, format)?;
         }
         let key = normalized(path);
-        if let Some(input) = inputs.iter().find(|i| normalized(i) == key) {
+        if let Some((_, input)) = inputs.iter().find(|(k, _)| *k == key) {
             return Err(Failure::Usage(format!(
                 "{flag} {} names the input file {}: it would be overwritten; write the \
                  output elsewhere",
@@ -102,15 +110,33 @@ pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Resul
                 input.display()
             )));
         }
-        if let Some(&(other, _, _)) = outputs[..k].iter().find(|o| normalized(o.1) == key) {
+        let dir = key.parent().map(Path::to_path_buf).unwrap_or_default();
+        if let Some(other) = seen.insert(key, flag) {
             return Err(Failure::Usage(format!(
                 "{other} and {flag} both name {}: one output would overwrite the other",
                 path.display()
             )));
         }
-        check_directory(path)?;
+        if directories.insert(dir) {
+            check_directory(path)?;
+            remove_stale(path);
+        }
     }
     Ok(())
+}
+
+/// Removes the stale staging files in the directory of `path` and tells the watcher.
+fn remove_stale(path: &Path) {
+    let removed = staging::remove_stale_staging(&directory_of(path));
+    if removed.is_empty() {
+        return;
+    }
+    let names: Vec<String> = removed.iter().map(|p| p.display().to_string()).collect();
+    crate::pipeline::context::notice(format!(
+        "removed {} staging file(s) left by an interrupted earlier run: {}",
+        removed.len(),
+        names.join(", ")
+    ));
 }
 
 /// `path` made absolute, its directory resolved through links where it exists.
@@ -154,13 +180,6 @@ fn check_directory(path: &Path) -> Result<(), Failure> {
     }
 }
 
-fn directory_of(path: &Path) -> PathBuf {
-    path.parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
-        .to_path_buf()
-}
-
 /// Outputs written beside their targets, renamed into place together by [`Staged::commit`]
 /// (dropped uncommitted, they are removed).
 #[derive(Debug, Default)]
@@ -174,18 +193,10 @@ impl Staged {
         Self::default()
     }
 
-    /// A hidden sibling of `target` with the same extension (the writers pick the format
-    /// by extension).
+    /// A registered hidden sibling of `target` with the same extension (the writers pick
+    /// the format by extension): [`staging::stage_path`].
     fn stage_path(&mut self, target: &Path) -> PathBuf {
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let staged = directory_of(target).join(format!(
-            ".conformap-stage-{}-{n}-{name}",
-            std::process::id()
-        ));
+        let staged = staging::stage_path(target);
         self.files.push((staged.clone(), target.to_path_buf()));
         staged
     }
@@ -244,6 +255,9 @@ impl Staged {
             .zip(targets)
             .enumerate()
             .try_for_each(|(i, (path, target))| {
+                if staging::interrupted() {
+                    return Err(Failure::input("the run was interrupted"));
+                }
                 frames
                     .write(path, &points(i))
                     .map_err(|e| renamed(e.into(), path, target))
@@ -281,29 +295,22 @@ impl Staged {
         self.text(target, &(text + "\n"))
     }
 
-    /// Renames every staged file onto its target.
+    /// Renames every staged file onto its target (all of them while an interrupt waits,
+    /// or none after one).
     pub fn commit(mut self) -> Result<(), Failure> {
         let files = std::mem::take(&mut self.files);
-        for (k, (staged, target)) in files.iter().enumerate() {
-            if let Err(e) = std::fs::rename(staged, target) {
-                for (rest, _) in &files[k..] {
-                    let _ = std::fs::remove_file(rest);
-                }
-                return Err(Failure::input(format!(
-                    "cannot write {}: {e}",
-                    target.display()
-                )));
-            }
-        }
-        Ok(())
+        staging::rename_all(&files).map_err(|(k, e)| {
+            let rest: Vec<&Path> = files[k..].iter().map(|(s, _)| s.as_path()).collect();
+            staging::discard(&rest);
+            Failure::input(format!("cannot write {}: {e}", files[k].1.display()))
+        })
     }
 }
 
 impl Drop for Staged {
     fn drop(&mut self) {
-        for (staged, _) in &self.files {
-            let _ = std::fs::remove_file(staged);
-        }
+        let files: Vec<&Path> = self.files.iter().map(|(s, _)| s.as_path()).collect();
+        staging::discard(&files);
     }
 }
 
