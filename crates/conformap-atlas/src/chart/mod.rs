@@ -10,6 +10,7 @@
 
 mod cut;
 mod quality;
+mod repair;
 mod split;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};
@@ -23,6 +24,7 @@ use crate::error::AtlasError;
 
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
+pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
 pub use split::{split_overlapping, Piece, MAX_SPLIT_DEPTH};
 
 /// A closed surface cut into one disk and flattened.
@@ -39,6 +41,8 @@ pub struct Chart {
     pub cut_length: f64,
     /// The closing residual of the boundary curve (boundary first flattening).
     pub closure_residual: f64,
+    /// Faces the flattening folded, before they were unfolded ([`unfold`]).
+    pub folded_before_repair: usize,
 }
 
 /// Charts one connected component of any topology:
@@ -170,9 +174,13 @@ pub fn chart_closed(
         .with_boundary(boundary)
         .with_equal_lengths(seam_pairs(mesh, &cut));
     let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
+    let mut uv = flat.map;
+    let folded_before_repair = repair::folded_faces(&cut.mesh, &uv).len();
+    unfold(&cut.mesh, &mut uv);
     Ok(Chart {
         cut,
-        uv: flat.map,
+        uv,
+        folded_before_repair,
         cones: set,
         cut_length: handle_length + added,
         closure_residual: flat.closure_residual,

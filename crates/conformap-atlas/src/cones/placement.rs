@@ -190,15 +190,18 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
     let total = cols.metric.closed().then(|| cols.metric.total_defect());
     // active set: a cone whose best defect leaves no positive angle is held at the bound
     // and the others solved again (the spread is convex in the defects)
-    let bound = std::f64::consts::TAU - MIN_CONE_ANGLE;
-    let mut held: Vec<bool> = vec![false; c];
+    let upper = std::f64::consts::TAU - MIN_CONE_ANGLE;
+    // no upper bound on a cone angle: saddle cones are cones too
+    let lower = f64::NEG_INFINITY;
+    let mut held: Vec<Option<f64>> = vec![None; c];
     let k = loop {
-        let k = constrained_least_squares(&gram, &rhs, c, &held, bound, total)?;
+        let k = constrained_least_squares(&gram, &rhs, c, &held, total)?;
+        let excess = |i: usize| (k[i] - upper).max(lower - k[i]);
         let worst = (0..c)
-            .filter(|&i| !held[i] && k[i] > bound)
-            .max_by(|&x, &y| k[x].total_cmp(&k[y]));
+            .filter(|&i| held[i].is_none() && excess(i) > 0.0)
+            .max_by(|&x, &y| excess(x).total_cmp(&excess(y)));
         match worst {
-            Some(i) if valid => held[i] = true,
+            Some(i) if valid => held[i] = Some(if k[i] > upper { upper } else { lower }),
             _ => break k,
         }
     };
@@ -219,31 +222,29 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
     Some((k, (q.max(0.0) / n).sqrt()))
 }
 
-/// Minimizes `kᵀ G k − 2 bᵀ k` over the defects not `held` (those are at `bound`), with
-/// `Σ k = total` when given: the KKT system of the free defects and the multiplier.
+/// Minimizes `kᵀ G k − 2 bᵀ k` over the defects not `held` (those are at their held
+/// value), with `Σ k = total` when given: the KKT system of the free defects and the
+/// multiplier.
 fn constrained_least_squares(
     gram: &[f64],
     rhs: &[f64],
     c: usize,
-    held: &[bool],
-    bound: f64,
+    held: &[Option<f64>],
     total: Option<f64>,
 ) -> Option<Vec<f64>> {
-    let free: Vec<usize> = (0..c).filter(|&i| !held[i]).collect();
+    let free: Vec<usize> = (0..c).filter(|&i| held[i].is_none()).collect();
     let f = free.len();
     let m = if total.is_some() { f + 1 } else { f };
+    let mut k: Vec<f64> = held.iter().map(|h| h.unwrap_or(0.0)).collect();
     if m == 0 {
-        return Some(vec![bound; c]);
+        return Some(k);
     }
     let mut sys = vec![0.0; m * (m + 1)];
     for (r, &i) in free.iter().enumerate() {
         for (q, &j) in free.iter().enumerate() {
             sys[r * (m + 1) + q] = gram[i * c + j];
         }
-        let fixed: f64 = (0..c)
-            .filter(|&j| held[j])
-            .map(|j| gram[i * c + j] * bound)
-            .sum();
+        let fixed: f64 = (0..c).map(|j| gram[i * c + j] * k[j]).sum();
         sys[r * (m + 1) + m] = rhs[i] - fixed;
     }
     if let Some(t) = total {
@@ -251,11 +252,10 @@ fn constrained_least_squares(
             sys[r * (m + 1) + f] = 1.0;
             sys[f * (m + 1) + r] = 1.0;
         }
-        let fixed = held.iter().filter(|&&h| h).count() as f64 * bound;
+        let fixed: f64 = k.iter().sum();
         sys[f * (m + 1) + m] = t - fixed;
     }
     let x = solve_dense(sys, m)?;
-    let mut k = vec![bound; c];
     for (r, &i) in free.iter().enumerate() {
         k[i] = x[r];
     }
