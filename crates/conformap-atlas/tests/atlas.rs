@@ -50,9 +50,9 @@ fn five_components_of_every_topology_share_the_square_without_overlap() {
         .all(|c| c.scale == atlas.packing.scale));
 }
 
-/// Armadillo's 8-cone metric folds 34 faces of the harmonic interior (thin limbs, obtuse
-/// triangles): unfolded, or taken out as mirrored single faces, none is left, nothing
-/// overlaps and every seam keeps its length.
+/// Armadillo (thin limbs, obtuse triangles; its cones at π/4 folded 34 faces): no flipped
+/// face, nothing overlaps and every seam keeps its length; the atlas issue's bars against BFF's 8 cones
+/// (area spread 2.51, angle 1.47°, packing 0.40).
 #[test]
 #[ignore = "reads the 86k-face armadillo from ../shared/meshes"]
 fn armadillo_has_no_flipped_face_and_no_overlap() {
@@ -64,7 +64,6 @@ fn armadillo_has_no_flipped_face_and_no_overlap() {
     let atlas =
         build_atlas(mesh.positions(), mesh.faces(), &AtlasOptions::default()).expect("atlas");
     let r = &atlas.report;
-    assert!(atlas.charts[0].chart.folded_before_repair > 0, "{r:?}");
     assert_eq!(r.flipped, 0, "{r:?}");
     assert_eq!(r.overlap.covered_twice, 0, "{r:?}");
     assert!(
