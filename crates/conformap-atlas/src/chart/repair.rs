@@ -18,16 +18,17 @@ use num_complex::Complex64;
 use super::split::{sub_piece, Piece};
 use crate::error::AtlasError;
 
-/// Ring counts tried around the folds, smallest first: the first that leaves no folded
-/// face is kept.
+/// Ring counts tried around the folds, smallest first, while each leaves fewer folded
+/// faces than the last (what a wider ring cannot reduce is folded by the boundary curve).
 pub const REPAIR_RINGS: [usize; 5] = [2, 4, 8, 16, 32];
 
 /// Gauss–Seidel sweeps per relaxation, at most; it stops earlier once no vertex moves by
 /// more than [`REPAIR_TOLERANCE`] of the region's size.
-const SWEEPS: usize = 4000;
+const SWEEPS: usize = 2000;
 
-/// Relative movement below which the relaxation has converged.
-pub const REPAIR_TOLERANCE: f64 = 1e-10;
+/// Relative movement below which the relaxation has converged (the sign of a face's
+/// area is all that is asked of it).
+pub const REPAIR_TOLERANCE: f64 = 1e-9;
 
 /// Faces of `mesh` whose image under `uv` is not counter-clockwise.
 pub(crate) fn folded_faces(mesh: &TriMesh, uv: &[Complex64]) -> Vec<usize> {
@@ -58,19 +59,18 @@ pub fn unfold(mesh: &TriMesh, uv: &mut [Complex64]) -> usize {
     let mut best = folded.len();
     for rings in REPAIR_RINGS {
         let folded = folded_faces(mesh, uv);
-        if folded.is_empty() {
-            return 0;
-        }
         let free = region(mesh, &weights, &folded, rings, &on_boundary);
         let mut trial = uv.to_vec();
         relax(&weights, &free, &mut trial);
         let left = folded_faces(mesh, &trial).len();
-        if left < best {
-            best = left;
-            uv.copy_from_slice(&trial);
+        if left >= best {
+            // a wider ring did not help: what is left is folded by the boundary itself
+            break;
         }
+        best = left;
+        uv.copy_from_slice(&trial);
         if best == 0 {
-            return 0;
+            break;
         }
     }
     best
@@ -185,7 +185,7 @@ fn relax(weights: &[Vec<(u32, f64)>], free: &[u32], uv: &mut [Complex64]) {
         lo = Complex64::new(lo.re.min(z.re), lo.im.min(z.im));
         hi = Complex64::new(hi.re.max(z.re), hi.im.max(z.im));
     }
-    let size = (hi - lo).norm().max(f64::MIN_POSITIVE);
+    let size = (hi - lo).norm_sqr().max(f64::MIN_POSITIVE);
     for _ in 0..SWEEPS {
         let mut moved = 0.0f64;
         for &v in free {
@@ -196,11 +196,11 @@ fn relax(weights: &[Vec<(u32, f64)>], free: &[u32], uv: &mut [Complex64]) {
             }
             if total > 0.0 {
                 let z = sum / total;
-                moved = moved.max((z - uv[v as usize]).norm());
+                moved = moved.max((z - uv[v as usize]).norm_sqr());
                 uv[v as usize] = z;
             }
         }
-        if moved < REPAIR_TOLERANCE * size {
+        if moved < REPAIR_TOLERANCE * REPAIR_TOLERANCE * size {
             break;
         }
     }

@@ -117,6 +117,20 @@ pub struct ConeSet {
     pub moves: usize,
 }
 
+impl ConeSet {
+    /// No cones on a surface of `vertices` vertices: `u = 0` (a free boundary keeps its
+    /// lengths), no spread measured (NaN).
+    pub fn none(vertices: usize) -> Self {
+        Self {
+            cones: Vec::new(),
+            u: vec![0.0; vertices],
+            area_spread: f64::NAN,
+            greedy_spread: f64::NAN,
+            moves: 0,
+        }
+    }
+}
+
 /// The per-face columns of the least-squares problem, cached per vertex.
 struct Columns<'a> {
     metric: &'a ConeMetric,
@@ -126,6 +140,11 @@ struct Columns<'a> {
     /// each pair is summed over the faces once, however many sets it appears in.
     dots: HashMap<(u32, u32), f64>,
     rhs_dots: HashMap<u32, f64>,
+    /// Green's functions per vertex (one solve each, shared by the columns and the
+    /// guidance metric).
+    greens: HashMap<u32, Vec<f64>>,
+    /// The guidance metric without cones (one solve).
+    start: Option<Vec<f64>>,
 }
 
 impl<'a> Columns<'a> {
@@ -137,7 +156,14 @@ impl<'a> Columns<'a> {
             rhs,
             dots: HashMap::new(),
             rhs_dots: HashMap::new(),
+            greens: HashMap::new(),
+            start: None,
         }
+    }
+
+    fn green(&mut self, v: u32) -> &[f64] {
+        let metric = self.metric;
+        self.greens.entry(v).or_insert_with(|| metric.green(v))
     }
 
     fn dot(&mut self, a: u32, b: u32) -> f64 {
@@ -171,10 +197,11 @@ impl<'a> Columns<'a> {
     }
 
     fn column(&mut self, v: u32) -> &[f64] {
-        let metric = self.metric;
-        self.cache
-            .entry(v)
-            .or_insert_with(|| centered(metric.face_log_scale(&metric.green(v))))
+        if !self.cache.contains_key(&v) {
+            let col = centered(self.metric.face_log_scale(self.green(v)));
+            self.cache.insert(v, col);
+        }
+        &self.cache[&v]
     }
 }
 
@@ -332,23 +359,8 @@ enum Reference {
 /// carries all of `2πχ`: useful only for comparison).
 pub fn place_cones(metric: &ConeMetric, count: usize, options: &ConeOptions) -> ConeSet {
     let mut cols = Columns::new(metric);
-    let mut greens: HashMap<u32, Vec<f64>> = HashMap::new();
-    let mut best = search(
-        metric,
-        &mut cols,
-        &mut greens,
-        count,
-        options,
-        Reference::Mean,
-    );
-    let other = search(
-        metric,
-        &mut cols,
-        &mut greens,
-        count,
-        options,
-        Reference::Cones,
-    );
+    let mut best = search(metric, &mut cols, count, options, Reference::Mean);
+    let other = search(metric, &mut cols, count, options, Reference::Cones);
     if other.spread < best.spread {
         best = other;
     }
@@ -379,7 +391,6 @@ struct Search {
 fn search(
     metric: &ConeMetric,
     cols: &mut Columns<'_>,
-    greens: &mut HashMap<u32, Vec<f64>>,
     count: usize,
     options: &ConeOptions,
     reference: Reference,
@@ -387,7 +398,7 @@ fn search(
     let mut vertices: Vec<u32> = Vec::new();
     // greedy: the most extreme vertex of the guidance metric of the cones so far
     while vertices.len() < count {
-        let u = guidance(metric, greens, &vertices);
+        let u = guidance(cols, &vertices);
         let Some(next) = extremes(metric, &u, &vertices, 1, reference)
             .first()
             .copied()
@@ -411,7 +422,7 @@ fn search(
         for i in 0..vertices.len() {
             let mut rest = vertices.clone();
             rest.remove(i);
-            let without = guidance(metric, greens, &rest);
+            let without = guidance(cols, &rest);
             for cand in extremes(metric, &without, &rest, options.candidates, reference) {
                 if cand == vertices[i] {
                     continue;
@@ -492,18 +503,19 @@ fn slide(
 /// Its extremes lie away from the cones, where the next cone pays most; the least-spread
 /// angles' scale factor has logarithmic spikes at its cones instead, whose neighbours
 /// would be picked next.
-fn guidance(
-    metric: &ConeMetric,
-    greens: &mut HashMap<u32, Vec<f64>>,
-    vertices: &[u32],
-) -> Vec<f64> {
+fn guidance(cols: &mut Columns<'_>, vertices: &[u32]) -> Vec<f64> {
+    let metric = cols.metric;
     let c = vertices.len();
     if c == 0 {
-        return start_potential(metric);
+        return cols
+            .start
+            .get_or_insert_with(|| start_potential(metric))
+            .clone();
     }
     for &v in vertices {
-        greens.entry(v).or_insert_with(|| metric.green(v));
+        cols.green(v);
     }
+    let greens = &cols.greens;
     // unknowns: the defects and, on a closed surface, a constant (u is defined up to one
     // there: the pinned vertex only fixes the gauge), with Σ k = 2πχ as the last equation
     let uk = metric.curvature_potential();
@@ -524,10 +536,20 @@ fn guidance(
         }
         sys[c * (m + 1) + m] = metric.total_defect();
     }
-    match solve_dense(sys, m) {
-        Some(k) => metric.scale_factor(&cones_of(vertices, &k[..c])),
-        None => start_potential(metric),
+    let Some(k) = solve_dense(sys, m) else {
+        return cols
+            .start
+            .get_or_insert_with(|| start_potential(metric))
+            .clone();
+    };
+    // u = Σ k_c g_c − u_K from the Green's functions at hand: no solve
+    let mut u: Vec<f64> = uk.iter().map(|x| -x).collect();
+    for (j, &v) in vertices.iter().enumerate() {
+        for (x, g) in u.iter_mut().zip(&greens[&v]) {
+            *x += k[j] * g;
+        }
     }
+    u
 }
 
 fn cones_of(vertices: &[u32], defects: &[f64]) -> Vec<(u32, f64)> {
@@ -566,12 +588,21 @@ fn extremes(
     let mut order: Vec<u32> = (0..u.len() as u32)
         .filter(|&v| !metric.pinned(v) && !taken.iter().any(|&t| metric.near(v, t, CONE_SPACING)))
         .collect();
-    order.sort_by(|&a, &b| {
-        (u[b as usize] - mean)
+    // strongest first, ties by index: a total order, so selecting the first `count` and
+    // sorting only those gives what a full sort would
+    let cmp = |a: &u32, b: &u32| {
+        (u[*b as usize] - mean)
             .abs()
-            .total_cmp(&(u[a as usize] - mean).abs())
-            .then(a.cmp(&b))
-    });
-    order.truncate(count);
+            .total_cmp(&(u[*a as usize] - mean).abs())
+            .then(a.cmp(b))
+    };
+    if count < order.len() {
+        if count == 0 {
+            return Vec::new();
+        }
+        order.select_nth_unstable_by(count - 1, cmp);
+        order.truncate(count);
+    }
+    order.sort_by(cmp);
     order
 }
