@@ -137,6 +137,26 @@ impl ConeMetric {
         self.solve_full(&e)
     }
 
+    /// The Green's functions of `vertices` (as [`Self::green`]) from one solve with as
+    /// many right-hand sides: the factor is read once for all of them.
+    pub fn greens(&self, vertices: &[u32]) -> Vec<Vec<f64>> {
+        let ni = self.part.interior.len();
+        if ni == 0 {
+            return vec![vec![0.0; self.curvature.len()]; vertices.len()];
+        }
+        let mut rhs = vec![0.0; ni * vertices.len()];
+        for (j, &v) in vertices.iter().enumerate() {
+            if self.part.is_interior[v as usize] {
+                rhs[j * ni + self.part.local[v as usize] as usize] = 1.0;
+            }
+        }
+        self.chol.solve_in_place(&mut rhs, vertices.len());
+        let zeros = vec![0.0; self.part.boundary.len()];
+        rhs.chunks_exact(ni)
+            .map(|x| self.part.assemble(x, &zeros))
+            .collect()
+    }
+
     /// The scale factor `u` with defect `k` at each cone `(vertex, k)` and 0 elsewhere
     /// (`Σ k = 2πχ` on a closed surface; see the module docs).
     pub fn scale_factor(&self, cones: &[(u32, f64)]) -> Vec<f64> {

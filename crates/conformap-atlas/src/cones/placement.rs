@@ -166,6 +166,24 @@ impl<'a> Columns<'a> {
         self.greens.entry(v).or_insert_with(|| metric.green(v))
     }
 
+    /// The Green's functions of those of `vertices` not cached yet, from one solve with
+    /// that many right-hand sides (the candidates of a move, the neighbours of a cone).
+    fn prefetch(&mut self, vertices: &[u32]) {
+        let mut missing: Vec<u32> = vertices
+            .iter()
+            .copied()
+            .filter(|v| !self.greens.contains_key(v))
+            .collect();
+        missing.sort_unstable();
+        missing.dedup();
+        if missing.is_empty() {
+            return;
+        }
+        for (v, g) in missing.iter().zip(self.metric.greens(&missing)) {
+            self.greens.insert(*v, g);
+        }
+    }
+
     fn dot(&mut self, a: u32, b: u32) -> f64 {
         let key = (a.min(b), a.max(b));
         if let Some(&d) = self.dots.get(&key) {
@@ -423,7 +441,9 @@ fn search(
             let mut rest = vertices.clone();
             rest.remove(i);
             let without = guidance(cols, &rest);
-            for cand in extremes(metric, &without, &rest, options.candidates, reference) {
+            let candidates = extremes(metric, &without, &rest, options.candidates, reference);
+            cols.prefetch(&candidates);
+            for cand in candidates {
                 if cand == vertices[i] {
                     continue;
                 }
@@ -474,6 +494,7 @@ fn slide(
     for i in 0..vertices.len() {
         let here = vertices[i];
         let mut best: Option<(u32, (Vec<f64>, f64))> = None;
+        cols.prefetch(metric.neighbours(here));
         for &w in metric.neighbours(here) {
             if metric.pinned(w) || vertices.contains(&w) {
                 continue;
