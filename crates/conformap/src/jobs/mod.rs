@@ -17,5 +17,6 @@ pub mod metrics;
 pub mod mobius;
 pub mod morph;
 pub mod param;
+pub mod param_match;
 pub mod render;
 pub mod sphere;
