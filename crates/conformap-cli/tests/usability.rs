@@ -6,7 +6,7 @@
 
 mod support;
 
-use support::{conformap, conformap_ok, fixture, metrics_json, s, stderr, tmpdir};
+use support::{conformap, conformap_ok, fixture, json, metrics_json, s, stderr, tmpdir};
 
 /// `text` (an OBJ) with its `f` lines reversed in order and each face rotated by one corner.
 fn reorder_faces(text: &str) -> String {
@@ -82,4 +82,148 @@ fn metrics_and_render_read_global_flat() {
     let png = d.join("r.png");
     conformap_ok(&["render", s(&eight), s(&flat), "-o", s(&png), "-q"]);
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+}
+
+#[test]
+fn disks_of_one_and_two_triangles_map_exactly() {
+    let d = tmpdir("tiny");
+    let one = d.join("tri1.obj");
+    std::fs::write(&one, "v 0 0 0\nv 3 0 0\nv 0.5 2 0\nf 1 2 3\n").unwrap();
+    let two = d.join("tri2.obj");
+    std::fs::write(
+        &two,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    for (mesh, method) in [(&one, "ccem-qn"), (&one, "double-cover"), (&two, "cem")] {
+        let (out, report) = (d.join("o.obj"), d.join("r.json"));
+        let o = conformap(&[
+            "disk",
+            s(mesh),
+            "-o",
+            s(&out),
+            "--method",
+            method,
+            "--report",
+            s(&report),
+        ]);
+        assert!(o.status.success(), "{method}: {}", stderr(&o));
+        let r = json(&report);
+        let m = &r["metrics"];
+        assert_eq!(m["flipped_faces"], 0);
+        // both a triangle and a square are inscribed in a circle: no angle distortion
+        assert!(
+            m["angle_distortion_deg"]["max"].as_f64().unwrap() < 1e-9,
+            "{m}"
+        );
+        assert!(
+            m["circle_residual_max"].as_f64().unwrap_or(0.0) < 1e-12,
+            "{m}"
+        );
+    }
+}
+
+/// Runs `args` expecting exit `code`; returns stderr.
+fn fails(args: &[&str], code: i32) -> String {
+    let o = conformap(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
+    err
+}
+
+#[test]
+fn ignored_options_are_said_on_stderr_and_in_the_report() {
+    let d = tmpdir("ignored");
+    let (out, report) = (d.join("o.obj"), d.join("r.json"));
+    let cases: [(&str, &[&str], &str); 4] = [
+        (
+            "halftunnel.obj",
+            &["--method", "harmonic"],
+            "--method harmonic",
+        ),
+        ("halftunnel.obj", &["--ordering", "nd"], "--ordering"),
+        ("woody.obj", &["--keep-folds"], "--keep-folds"),
+        (
+            "woody.obj",
+            &["--method", "harmonic", "--max-iter", "5"],
+            "--max-iter",
+        ),
+    ];
+    for (mesh, extra, needle) in cases {
+        let mesh_path = fixture(mesh);
+        let mut argv = vec!["disk", s(&mesh_path), "-o", s(&out), "--report", s(&report)];
+        argv.extend(extra);
+        let o = conformap(&argv);
+        assert!(o.status.success(), "{argv:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("ignored: ") && stderr(&o).contains(needle),
+            "{}",
+            stderr(&o)
+        );
+        let listed = json(&report)["solver"]["ignored_options"].to_string();
+        assert!(listed.contains(needle), "{listed}");
+    }
+    // render: a colour the histogram does not draw is refused
+    let png = d.join("h.svg");
+    conformap_ok(&["disk", s(&fixture("woody.obj")), "-o", s(&out), "-q"]);
+    let err = fails(
+        &[
+            "render",
+            s(&fixture("woody.obj")),
+            s(&out),
+            "-o",
+            s(&png),
+            "--view",
+            "histogram",
+            "--color",
+            "beltrami",
+        ],
+        2,
+    );
+    assert!(err.contains("--color beltrami"), "{err}");
+}
+
+#[test]
+fn triangle_soup_prediction_is_the_repair() {
+    let d = tmpdir("soup");
+    let text = std::fs::read_to_string(fixture("woody.obj")).unwrap();
+    let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
+    let mut soup = String::new();
+    let mut k = 0;
+    for f in text.lines().filter(|l| l.starts_with("f ")) {
+        for i in f.split_whitespace().skip(1) {
+            soup.push_str(v[i.parse::<usize>().unwrap() - 1]);
+            soup.push('\n');
+        }
+        soup.push_str(&format!("f {} {} {}\n", k + 1, k + 2, k + 3));
+        k += 3;
+    }
+    let path = d.join("soup.obj");
+    std::fs::write(&path, soup).unwrap();
+    let out = d.join("o.obj");
+    let err = fails(&["disk", s(&path), "-o", s(&out)], 1);
+    assert!(
+        err.contains("coincident vertices") && !err.contains("dropped"),
+        "{err}"
+    );
+    let info =
+        String::from_utf8_lossy(&conformap_ok(&["info", s(&path), "--json"]).stdout).to_string();
+    let info: serde_json::Value = serde_json::from_str(&info).unwrap();
+    let predicted = info["repairs_available"].to_string();
+    assert!(
+        predicted.contains("coincident") && !predicted.contains("dropped"),
+        "{predicted}"
+    );
+    let report = d.join("r.json");
+    conformap_ok(&[
+        "disk",
+        s(&path),
+        "--repair",
+        "-o",
+        s(&out),
+        "--report",
+        s(&report),
+        "-q",
+    ]);
+    assert_eq!(json(&report)["input"]["faces"], 1267);
 }

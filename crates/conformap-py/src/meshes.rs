@@ -212,19 +212,10 @@ fn repair_arrays(
         let hint = conformap::failure::mesh_hint(&e).map(str::to_string);
         Failure::BadInput(format!("{}: {e}", crate::arrays::MEMORY_PATH), hint)
     };
-    let welded = conformap_io::weld_coincident(positions, faces);
-    let fixed = conformap_mesh::repair(
-        &welded.positions,
-        &welded.faces,
-        &conformap_mesh::RepairOptions::DEFAULT,
-    )
-    .map_err(at)?;
+    // the CLI's --repair, by the same code
+    let fixed = conformap::pipeline::input::weld_and_repair(positions, faces).map_err(at)?;
     let log = fixed.log;
-    let origin = log
-        .vertex_to_input
-        .iter()
-        .map(|&c| welded.first[c as usize])
-        .collect();
+    let origin = log.vertex_to_input.iter().map(|&c| c as usize).collect();
     let mesh = conformap_mesh::TriMesh::try_new(fixed.positions, fixed.faces)
         .map_err(|e| at(log.to_input_error(e)))?;
     Ok((mesh, origin))

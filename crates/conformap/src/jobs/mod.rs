@@ -8,6 +8,7 @@ pub mod atlas;
 pub mod converged;
 pub mod disk;
 pub mod disk_holes;
+pub mod disk_tiny;
 pub mod flatten;
 pub mod global;
 pub mod global_solved;
