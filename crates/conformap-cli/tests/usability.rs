@@ -123,12 +123,110 @@ fn disks_of_one_and_two_triangles_map_exactly() {
     }
 }
 
+#[test]
+fn batch_input_listed_twice_is_named_so() {
+    let d = tmpdir("twice");
+    let woody = fixture("woody.obj");
+    let o = conformap(&[
+        "batch",
+        "--command",
+        "disk",
+        "--out-dir",
+        s(&d),
+        s(&woody),
+        s(&woody),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("is listed twice"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_file_where_a_directory_is_expected_is_named() {
+    let d = tmpdir("file-dir");
+    let file = d.join("file.obj");
+    std::fs::write(&file, "x").unwrap();
+    let out = file.join("x.obj");
+    let o = conformap(&["disk", s(&fixture("woody.obj")), "-o", s(&out)]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("is a file, not a directory"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// Runs `args` expecting exit `code`; returns stderr.
 fn fails(args: &[&str], code: i32) -> String {
     let o = conformap(args);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
     err
+}
+
+#[test]
+fn option_messages_name_the_flags_typed() {
+    let d = tmpdir("flags");
+    let out = d.join("o.obj");
+    // an internal option name never reaches the user
+    let err = fails(
+        &[
+            "disk",
+            s(&fixture("halftunnel.obj")),
+            "-o",
+            s(&out),
+            "--max-iter",
+            "0",
+        ],
+        2,
+    );
+    assert!(
+        err.contains("--max-iter") && !err.contains("max_sweeps"),
+        "{err}"
+    );
+    let png = d.join("r.png");
+    let woody = fixture("woody.obj");
+    conformap_ok(&["disk", s(&woody), "-o", s(&out), "-q"]);
+    let err = fails(
+        &[
+            "render",
+            s(&woody),
+            s(&out),
+            "-o",
+            s(&png),
+            "--azimuth",
+            "nan",
+        ],
+        2,
+    );
+    assert!(
+        err.contains("--azimuth") && !err.contains("azimuth_deg"),
+        "{err}"
+    );
+    // --form out of range: a usage error with the number given
+    let err = fails(
+        &[
+            "global",
+            s(&fixture("eightsim.obj")),
+            "-o",
+            s(&out),
+            "--form",
+            "99",
+        ],
+        2,
+    );
+    assert!(err.contains("--form 99"), "{err}");
+    // a limit below a KiB is printed in bytes, not as "0 KiB"
+    let err = fails(&["disk", s(&woody), "-o", s(&out), "--max-memory", "1"], 1);
+    assert!(
+        err.contains("1 B allowed") && !err.contains("0 KiB"),
+        "{err}"
+    );
+    // a negative value is refused by the flag's own check, with no tip about `-- -1`
+    let err = fails(&["disk", s(&woody), "-o", s(&out), "--max-iter", "-1"], 2);
+    assert!(
+        err.contains("--max-iter") && !err.contains("'-- -1'"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -49,6 +49,13 @@ pub fn collect_inputs(args: &[PathBuf]) -> Result<Vec<BatchInput>, Failure> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         if let Some(other) = seen.insert(stem.clone(), mesh) {
+            if same_file(other, mesh) {
+                return Err(Failure::Usage(format!(
+                    "{} is listed twice: each input once, please (its outputs DIR/{stem}.* \
+                     would be written twice)",
+                    mesh.display()
+                )));
+            }
             return Err(Failure::Usage(format!(
                 "{} and {} have the same stem `{stem}`: their outputs DIR/{stem}.* would \
                  overwrite each other; rename one or run them in two batches",
@@ -167,4 +174,13 @@ mod tests {
         assert!(matches!(same, Err(Failure::Usage(m)) if m.contains("same stem `a`")));
         std::fs::remove_dir_all(&dir).ok();
     }
+}
+
+/// Whether `a` and `b` name the same file (the same path, or both resolve to one).
+fn same_file(a: &Path, b: &Path) -> bool {
+    a == b
+        || matches!(
+            (a.canonicalize(), b.canonicalize()),
+            (Ok(x), Ok(y)) if x == y
+        )
 }

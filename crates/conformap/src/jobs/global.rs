@@ -277,7 +277,17 @@ impl GlobalJob {
             return global_topology::solve(&topology_options(self), input);
         }
         let fail = |e: conformap_global::GlobalError| input.fail(e.into());
-        let map = global_map(mesh, &self.options(region)).map_err(fail)?;
+        let map = global_map(mesh, &self.options(region)).map_err(|e| match (&e, self.form) {
+            // a usage error with the number given (2g is known once the mesh is read)
+            (
+                conformap_global::GlobalError::InvalidOption {
+                    name: "form",
+                    reason,
+                },
+                Some(k),
+            ) => Failure::Usage(format!("--form {k}: {reason}")),
+            _ => fail(e),
+        })?;
         let seamed = map.seamed_layout(mesh).map_err(fail)?;
         global_solved::map_solved(mesh, &map, seamed)
     }
