@@ -282,6 +282,22 @@ fn ignored_options_are_said_on_stderr_and_in_the_report() {
 }
 
 #[test]
+fn every_map_command_help_says_how_the_map_becomes_texture_coordinates() {
+    for command in ["disk", "sphere", "mobius", "global", "flatten", "atlas"] {
+        let o = conformap_ok(&[command, "--help"]);
+        let help = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            help.contains("Texture coordinates (-o):"),
+            "{command}:\n{help}"
+        );
+        assert!(
+            help.contains("Texture coordinates\" at the end"),
+            "{command}:\n{help}"
+        );
+    }
+}
+
+#[test]
 fn triangle_soup_prediction_is_the_repair() {
     let d = tmpdir("soup");
     let text = std::fs::read_to_string(fixture("woody.obj")).unwrap();
@@ -324,4 +340,36 @@ fn triangle_soup_prediction_is_the_repair() {
         "-q",
     ]);
     assert_eq!(json(&report)["input"]["faces"], 1267);
+}
+
+#[test]
+fn batch_summary_names_inputs_stopped_at_the_cap() {
+    let d = tmpdir("cap");
+    let woody = fixture("woody.obj");
+    let o = conformap(&[
+        "batch",
+        "--command",
+        "disk",
+        "--out-dir",
+        s(&d),
+        s(&woody),
+        "--",
+        "--method",
+        "ccem",
+        "--max-iter",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout).to_string();
+    let summary: serde_json::Value = serde_json::from_str(stdout.lines().last().unwrap()).unwrap();
+    assert_eq!(
+        summary["summary"]["not_converged"],
+        serde_json::json!([s(&woody)]),
+        "{summary}"
+    );
+    assert!(
+        stderr(&o).contains("stopped at the iteration cap"),
+        "{}",
+        stderr(&o)
+    );
 }

@@ -8,6 +8,9 @@ use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap sphere`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): the equirectangular (longitude/latitude) projection of the sphere point, u = (atan2(y, x) + π)/2π, v = (asin z + π/2)/π; `--flat`: the unit-sphere points."
+)]
 pub struct SphereArgs {
     /// The mesh (closed, connected, genus 0) and how to read it.
     #[command(flatten)]
