@@ -141,6 +141,15 @@ fn split_csv(line: &str) -> Vec<String> {
     fields.iter().map(|f| f.trim().to_string()).collect()
 }
 
+/// Whether `a` and `b` name the same file (the same path, or both resolve to one).
+fn same_file(a: &Path, b: &Path) -> bool {
+    a == b
+        || matches!(
+            (a.canonicalize(), b.canonicalize()),
+            (Ok(x), Ok(y)) if x == y
+        )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -174,13 +183,4 @@ mod tests {
         assert!(matches!(same, Err(Failure::Usage(m)) if m.contains("same stem `a`")));
         std::fs::remove_dir_all(&dir).ok();
     }
-}
-
-/// Whether `a` and `b` name the same file (the same path, or both resolve to one).
-fn same_file(a: &Path, b: &Path) -> bool {
-    a == b
-        || matches!(
-            (a.canonicalize(), b.canonicalize()),
-            (Ok(x), Ok(y)) if x == y
-        )
 }
