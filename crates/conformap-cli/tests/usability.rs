@@ -373,3 +373,59 @@ fn batch_summary_names_inputs_stopped_at_the_cap() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_duplicated_vertex_that_splits_a_fan_is_hinted_to_repair() {
+    // woody with vertex 2 (1-based) copied to a new last line, every other face around it
+    // using the copy: the copy's faces form two fans (non-manifold), welding undoes it
+    let d = tmpdir("dup-vertex");
+    let text = std::fs::read_to_string(fixture("woody.obj")).unwrap();
+    let v: Vec<&str> = text.lines().filter(|l| l.starts_with("v ")).collect();
+    let copy = v.len() + 1;
+    let mut out: String = v.iter().map(|l| format!("{l}\n")).collect();
+    out.push_str(v[1]);
+    out.push('\n');
+    let mut around = 0;
+    for f in text.lines().filter(|l| l.starts_with("f ")) {
+        let c: Vec<usize> = f
+            .split_whitespace()
+            .skip(1)
+            .map(|i| i.split('/').next().unwrap().parse().unwrap())
+            .collect();
+        let c = if c.contains(&2) {
+            around += 1;
+            let moved = around % 2 == 1;
+            c.iter()
+                .map(|&i| if i == 2 && moved { copy } else { i })
+                .collect()
+        } else {
+            c
+        };
+        out.push_str(&format!("f {} {} {}\n", c[0], c[1], c[2]));
+    }
+    let path = d.join("dup.obj");
+    std::fs::write(&path, out).unwrap();
+    let o = d.join("o.obj");
+    let err = fails(&["disk", s(&path), "-o", s(&o)], 1);
+    assert!(err.contains("non-manifold"), "{err}");
+    assert!(
+        err.contains("rerun with --repair: it welds 1 coincident"),
+        "{err}"
+    );
+    assert!(!err.contains("no automatic repair is safe"), "{err}");
+    assert!(!o.exists());
+    let report = d.join("r.json");
+    conformap_ok(&[
+        "disk",
+        s(&path),
+        "--repair",
+        "-o",
+        s(&o),
+        "--report",
+        s(&report),
+        "-q",
+    ]);
+    let r = json(&report);
+    assert_eq!(r["input"]["faces"], 1267);
+    assert_eq!(r["input"]["vertices"], 694, "{}", r["input"]);
+}

@@ -39,7 +39,7 @@ impl Input {
 /// file places either way.
 pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
     if !repair {
-        let loaded = conformap_io::read_mesh(path)?;
+        let loaded = conformap_io::read_mesh(path).map_err(|e| refusal(path, e))?;
         return Ok(Input {
             mesh: loaded.mesh,
             source: loaded.source,
@@ -48,6 +48,47 @@ pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
         });
     }
     repair_input(conformap_io::read_raw_mesh(path)?)
+}
+
+/// The failure of reading `path` without `--repair`: when the mesh is non-manifold only
+/// because of coincident vertices (a duplicated vertex that splits a fan), the hint says
+/// that `--repair` welds them into a valid mesh (checked by running the repair,
+/// [`weld_and_repair`]) instead of "no automatic repair is safe".
+fn refusal(path: &Path, e: conformap_io::IoError) -> Failure {
+    use conformap_mesh::MeshError as M;
+    let non_manifold = matches!(
+        &e,
+        conformap_io::IoError::InvalidMesh {
+            source: M::NonManifoldVertex { .. } | M::NonManifoldEdge { .. },
+            ..
+        }
+    );
+    let failure = Failure::from(e);
+    if !non_manifold {
+        return failure;
+    }
+    let Ok(raw) = conformap_io::read_raw_mesh(path) else {
+        return failure;
+    };
+    let welded = match weld_and_repair(&raw.positions, &raw.faces) {
+        Ok(fixed) if fixed.log.coincident_welded > 0 => fixed,
+        _ => return failure,
+    };
+    if TriMesh::try_new(welded.positions, welded.faces).is_err() {
+        return failure;
+    }
+    match failure {
+        Failure::BadInput(message, _) => Failure::BadInput(
+            message,
+            Some(format!(
+                "rerun with --repair: it welds {} coincident vertex(es) (bit-identical \
+                 positions), which makes this a valid mesh (`conformap info --repair MESH` \
+                 describes the result)",
+                welded.log.coincident_welded
+            )),
+        ),
+        other => other,
+    }
 }
 
 /// Applies every repair of [`conformap_mesh::repair`] to `raw` and validates the result;
