@@ -363,7 +363,6 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         "ok": ok,
         "failed": failed,
         "skipped": skipped,
-        "not_converged": at_cap,
         "jobs": workers,
         "exit_code": exit_code,
         "peak_rss_bytes": peak,
