@@ -153,8 +153,9 @@ fn components_failure(mesh: &TriMesh, components: usize) -> Failure {
     Failure::BadInput(
         e.to_string(),
         Some(format!(
-            "rerun with --repair, which would do this: {}; `conformap info --repair MESH` \
-             describes the result",
+            "`conformap atlas` charts all {components} components as they are; or rerun \
+             with --repair, which would do this: {}; `conformap info --repair MESH` describes \
+             the result",
             actions.join("; ")
         )),
     )
