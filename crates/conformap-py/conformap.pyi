@@ -16,11 +16,15 @@ Example::
     print(report["metrics"]["conformal_energy"])
 
 Every map command of the CLI is bound: ``disk_map``, ``sphere_map``, ``mobius``,
-``global_map`` (a seamed layout: ``uv`` and ``F_uv``), ``morph``; and ``metrics``, ``info``,
-``read_mesh``, ``write_mesh``.
+``global_map`` (a seamed layout: ``uv`` and ``F_uv``), ``morph``, ``flatten``, ``atlas``; and
+``metrics``, ``info``, ``read_mesh``, ``write_mesh``, ``repair`` (the CLI's ``--repair``).
+Arguments are spelled as here (``V``, ``F``, ``max_iter``, ...), by position or by keyword.
 
 Exceptions carry ``exit_code`` (the CLI's: 1 bad input, 2 usage error, 3 numerical failure)
-and ``hint`` (the CLI's ``hint:`` line, or ``None``).
+and ``hint`` (the CLI's ``hint:`` line, or ``None``). Messages name keywords, not CLI flags
+(``tol``, ``outer=5``); errors about the arrays passed start with ``<arrays>:``. A negative
+count (``max_iter``, ``frames``, ``form``, ...) or ``max_memory=0`` raises ConformapError with
+``exit_code`` 2, as the CLI's parser refuses such flags.
 """
 
 import os
@@ -227,6 +231,7 @@ def global_map(
     starts: Optional[int] = None,
     conjugate: Literal["nearest", "gu-yau"] = "nearest",
     root: Optional[int] = None,
+    topology_opt: bool = False,
     return_mesh: Literal[False] = False,
     strict: bool = False,
     max_memory: Optional[int] = None,
@@ -243,6 +248,7 @@ def global_map(
     starts: Optional[int] = None,
     conjugate: Literal["nearest", "gu-yau"] = "nearest",
     root: Optional[int] = None,
+    topology_opt: bool = False,
     return_mesh: Literal[True],
     strict: bool = False,
     max_memory: Optional[int] = None,
@@ -273,6 +279,10 @@ def global_map(
     indices), ``"zeros"`` (zeros nearest the vertices ``zeros``; genus ≥ 2), ``"basis"``
     (the basis form of lowest uniformity energy); ``form=K`` lays out basis form K
     instead. ``conjugate``, ``root``: the CLI's ``--conjugate``, ``--root``.
+    ``topology_opt=True``: the CLI's ``--topology-opt`` (Jin et al. §3.5: slits that make the
+    map more uniform; also takes closed genus-0 surfaces), ``report["topology_opt"]`` says
+    what was returned; when that is a sphere map (genus 0, no slit paid), ``uv`` holds its
+    (n, 3) unit vectors and ``F_uv`` is ``F``.
 
     A surface with boundary chords (an interior edge joining two boundary vertices) is
     refined by its double covering: the layout then belongs to a refined mesh (its first
@@ -303,7 +313,8 @@ def morph(
     every frame has the vertices and faces of the first. ``landmarks``: one list per
     surface, the same number in every list: 0-based vertex indices (landmark j of every
     surface corresponds; named ``"0"``, ``"1"``, ... in the report), or dicts
-    ``name -> vertex`` (the same names in the same order, as the CLI's landmark files).
+    ``name -> vertex`` (the same names in every dict, matched by name: their order need not
+    agree).
     The first landmark goes to the centre of the disk, the second fixes the rotation:
     both must be interior vertices. ``frames``: N ≥ number of surfaces (key surface k at
     frame round(k (N−1)/(K−1))). ``lambda_``: the landmark weight λ of Eq. 34
@@ -313,7 +324,8 @@ def morph(
     first surface's vertices at each frame (``frames[0]`` is ``V1`` bit for bit); ``F``
     (m, 3) int64, the first surface's faces; the CLI's report dict (``inputs`` named
     ``<surfaces[k]>``, ``landmark_files`` ``<landmarks[k]>``; errors name them the same
-    way).
+    way). The result array is estimated first: frames that would not fit in the memory
+    available raise ConformapError before any work.
 
     Example::
 
@@ -342,12 +354,38 @@ def info(V: ArrayLike, F: ArrayLike) -> dict[str, Any]:
         conformap.info(V, F)["boundary_loop_sizes"]
     """
 
-def read_mesh(path: PathLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
-    """Reads an OBJ / glTF / GLB mesh as ``(V, F)``: float64 (n, 3), int64 (m, 3).
+def read_mesh(
+    path: PathLike, repair: bool = False
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """Reads a mesh file (OBJ, glTF / GLB, PLY, STL, OFF, GIfTI, FreeSurfer) as ``(V, F)``:
+    float64 (n, 3), int64 (m, 3). A file that is not a valid mesh raises ConformapError;
+    ``repair=True`` applies the CLI's ``--repair`` first (as ``repair``), so a slightly
+    dirty file (duplicate faces, unreferenced or coincident vertices, faces flipped, stray
+    components) loads.
 
     Example::
 
         V, F = conformap.read_mesh("fixtures/woody.obj")
+        V, F = conformap.read_mesh("fixtures/bad/dirty_disk.obj", repair=True)
+    """
+
+def repair(
+    V: ArrayLike, F: ArrayLike
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """The CLI's ``--repair`` on arrays: coincident vertices welded (a triangle soup becomes
+    a mesh), duplicate faces and unreferenced vertices dropped, the largest component kept,
+    faces oriented consistently. Defects no repair fixes safely (non-manifold elements,
+    degenerate faces, NaN) raise ConformapError naming the element.
+
+    Returns ``(V, F, vertex_map)``: the repaired mesh, and for each of its vertices the row
+    of the input ``V`` it comes from (int64 (k,)).
+
+    Example::
+
+        V, F = conformap.read_mesh("fixtures/woody.obj")
+        soup_V, soup_F = V[F.ravel()], np.arange(F.size).reshape(-1, 3)
+        R, RF, vertex_map = conformap.repair(soup_V, soup_F)
+        assert R.shape == V.shape and RF.shape == F.shape
     """
 
 def write_mesh(
@@ -362,10 +400,16 @@ def write_mesh(
     (k, 2), ``F_uv`` (m, 3) rows of ``uv`` per face corner, as ``global_map`` returns:
     OBJ ``f v/vt``, glTF split along the seams).
 
+    An empty mesh (no faces) and NaN or infinite ``uv`` raise ConformapError: what is
+    written reads back with ``read_mesh``.
+
     Example::
 
+        V, F = conformap.read_mesh("fixtures/woody.obj")
+        uv, _ = conformap.disk_map(V, F)
         conformap.write_mesh("woody_uv.obj", V, F, uv=(uv + 1) / 2)
-        uv, F_uv, report = conformap.global_map(*conformap.read_mesh("fixtures/eightsim.obj"))
+        V, F = conformap.read_mesh("fixtures/eightsim.obj")
+        uv, F_uv, report = conformap.global_map(V, F)
         g = report["global"]
         conformap.write_mesh("eight_uv.obj", V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
     """

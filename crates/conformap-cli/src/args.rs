@@ -57,7 +57,7 @@ impl InputArgs {
 #[derive(Debug, Clone, Args)]
 pub struct OutputArgs {
     /// Output mesh: the input's 3D positions with the map as texture coordinates (.obj,
-    /// .gltf, .glb; the command's help says how the map becomes texture coordinates).
+    /// .gltf, .glb; "Texture coordinates" at the end of this help says how).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Also write the raw map as a mesh: (u, v, 0) for planar maps, the unit-sphere points

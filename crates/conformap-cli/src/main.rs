@@ -12,13 +12,12 @@ use std::process::ExitCode;
 
 use std::sync::Arc;
 
-use clap::Parser;
 use conformap::pipeline::context::RunContext;
 use conformap_cli::progress::{BarWatcher, Progress, ProgressMode};
 use conformap_cli::{Cli, Command};
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = Cli::try_parse_args(std::env::args_os()).unwrap_or_else(|e| e.exit());
     #[cfg(unix)]
     watch_signals();
     let mode = ProgressMode::detect(cli.quiet);

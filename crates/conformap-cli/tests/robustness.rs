@@ -133,8 +133,8 @@ fn every_defect_class_names_element_line_and_what_to_do() {
             &[
                 "two_components.obj: a disk map needs a disk",
                 "2 separate components",
-                "hint: `conformap atlas` charts all 2 components; or rerun with --repair to \
-                 keep the largest component",
+                "`conformap atlas` charts all 2 components",
+                "rerun with --repair, which would do this: largest of 2 components kept",
             ],
         ),
         (

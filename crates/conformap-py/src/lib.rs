@@ -16,7 +16,8 @@
 //! - [`mobius`]: `mobius` (the map and the region in memory).
 //! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
-//! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
+//! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`, `repair`.
+//! - [`options`]: keyword arguments checked as the CLI's parser checks its flags.
 
 pub mod arrays;
 pub mod atlas;
@@ -27,6 +28,7 @@ pub mod maps;
 pub mod meshes;
 pub mod mobius;
 pub mod morph;
+pub mod options;
 pub mod sphere_uv;
 
 use pyo3::prelude::*;
@@ -50,5 +52,6 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(meshes::metrics, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::repair, m)?)?;
     Ok(())
 }

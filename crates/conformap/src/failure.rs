@@ -153,7 +153,10 @@ impl From<conformap_disk::DiskError> for Failure {
                         .to_string(),
                 ),
             ),
-            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
+            E::InvalidOption { name, reason } => {
+                Self::Usage(format!("invalid option {}: {reason}", option_flag(name)))
+            }
+            E::OuterLoopOutOfRange { .. } => Self::Usage(e.to_string()),
             E::UnknownBoundary { .. } => Self::Usage(e.to_string()),
             E::Fill(_)
             | E::VertexOutOfRange { .. }
@@ -285,5 +288,14 @@ impl From<conformap_metrics::MetricsError> for Failure {
     /// The metrics of a map the solver computed cannot fail on good input: numerical.
     fn from(e: conformap_metrics::MetricsError) -> Self {
         Self::Numerical(e.to_string())
+    }
+}
+
+/// The command-line flag of a library option field (`max_sweeps` → `--max-iter`,
+/// `azimuth_deg` → `--azimuth`), so that messages name what the user typed.
+pub fn option_flag(name: &str) -> String {
+    match name {
+        "max_sweeps" | "max_iter" => "--max-iter".to_string(),
+        other => format!("--{}", other.trim_end_matches("_deg").replace('_', "-")),
     }
 }

@@ -289,6 +289,7 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         w.started(jobs.len());
     }
     let (mut ok, mut failed, mut skipped) = (0usize, 0usize, 0usize);
+    let mut at_cap: Vec<String> = Vec::new();
     let mut emit = |line: &Value| {
         let text = line.to_string();
         match &watcher {
@@ -337,6 +338,9 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
             }
             pending.insert(k, line);
             while let Some(line) = pending.remove(&due) {
+                if stopped_at_cap(&line) {
+                    at_cap.push(line["input"].as_str().unwrap_or_default().to_string());
+                }
                 match line["status"].as_str() {
                     Some("ok") => ok += 1,
                     Some("skipped") => skipped += 1,
@@ -365,9 +369,17 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         "peak_rss_bytes": peak,
         "total_ms": ms_since(t_all),
     }}));
+    let cap_note = if at_cap.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; stopped at the iteration cap (not converged): {}",
+            at_cap.join(", ")
+        )
+    };
     Ok(Outcome {
         messages: vec![format!(
-            "batch {}: {} inputs, {ok} ok, {failed} failed, {skipped} skipped; {:.0} ms",
+            "batch {}: {} inputs, {ok} ok, {failed} failed, {skipped} skipped{cap_note}; {:.0} ms",
             args.command_name(),
             jobs.len(),
             ms_since(t_all)
@@ -450,4 +462,14 @@ fn exit_class(f: &Failure) -> &'static str {
         Failure::Usage(_) => "usage",
         Failure::Numerical(_) => "numerical",
     }
+}
+
+/// Whether an input's line says its solver stopped at the iteration cap: a map that did not
+/// converge, or a `--strict` refusal of one (exit 3, "did not converge").
+fn stopped_at_cap(line: &Value) -> bool {
+    let refused = line["exit_code"].as_u64() == Some(3)
+        && line["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("did not converge"));
+    line["converged"].as_bool() == Some(false) || refused
 }

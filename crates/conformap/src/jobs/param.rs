@@ -8,6 +8,7 @@ use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
 use crate::failure::Failure;
+use crate::jobs::param_match::{match_faces, reorder_corners, seamed_flat};
 
 /// Largest `||x| − 1|` of a point taken for a point of the unit sphere: the library's
 /// [`conformap_sphere::MAP_RADIUS_TOL`] (1e-6), which maps stored as f32 (glTF, ~1e-7 of
@@ -231,12 +232,24 @@ fn corner_sphere_points(mesh: &TriMesh, corners: &CornerUv) -> Option<Vec<[f64; 
 /// Reads a map file without geometric validation: a valid map crowds triangles far below
 /// the degenerate-area threshold of a 3D mesh (alligator's disk map: area 1e-28;
 /// armadillo's sphere map: chord triangles of 2e-14), so only its connectivity must match
-/// `mesh`'s, vertex for vertex and face for face.
+/// `mesh`'s: its vertices in the mesh's order and the mesh's faces, in any order and
+/// starting at any corner ([`match_faces`]); or a seamed flat layout (`global --flat`, see
+/// [`seamed_flat`]).
 ///
 /// Texture coordinates, when the file has them, must cover every vertex (the error names
 /// the first that has none).
 pub fn read_map_file(param: &Path, mesh_path: &Path, mesh: &TriMesh) -> Result<MapFile, Failure> {
-    let raw = conformap_io::read_raw_mesh(param)?;
+    let mut raw = conformap_io::read_raw_mesh(param)?;
+    if raw.uv.is_none() && raw.corner_uv.is_none() {
+        if let Some((corner, positions)) = seamed_flat(&raw.positions, &raw.faces, mesh) {
+            return Ok(MapFile {
+                path: param.to_path_buf(),
+                positions,
+                uv: None,
+                corner_uv: Some(corner),
+            });
+        }
+    }
     let (pv, pf) = (raw.positions.len(), raw.faces.len());
     if pv != mesh.num_vertices() || pf != mesh.num_faces() {
         return Err(Failure::BadInput(
@@ -257,22 +270,27 @@ pub fn read_map_file(param: &Path, mesh_path: &Path, mesh: &TriMesh) -> Result<M
             ),
         ));
     }
-    if let Some(face) = (0..mesh.num_faces()).find(|&f| raw.faces[f] != mesh.faces()[f]) {
-        return Err(Failure::BadInput(
-            format!(
-                "face {face} of {} is {:?} but face {face} of {} is {:?}: the map must use the \
-                 mesh's faces in the same order",
-                param.display(),
-                raw.faces[face],
-                mesh_path.display(),
-                mesh.faces()[face]
-            ),
-            Some(
-                "write the map with the mesh's own faces in the mesh's order (a re-exported or \
-                 re-triangulated map file does not match)"
-                    .to_string(),
-            ),
-        ));
+    match match_faces(&raw.faces, mesh.faces()) {
+        Ok(None) => {}
+        // a per-vertex map needs only the vertex order; a seamed one follows its faces
+        Ok(Some(order)) => raw.corner_uv = raw.corner_uv.map(|c| reorder_corners(c, &order)),
+        Err(face) => {
+            return Err(Failure::BadInput(
+                format!(
+                    "face {face} of {} ({:?}) is not a face of {}: the map must have the \
+                     mesh's faces (in any order, starting at any corner) and its vertices \
+                     in the mesh's order",
+                    mesh_path.display(),
+                    mesh.faces()[face],
+                    param.display(),
+                ),
+                Some(
+                    "write the map with the mesh's vertices in the mesh's order (a \
+                     re-triangulated or re-indexed map file does not match)"
+                        .to_string(),
+                ),
+            ))
+        }
     }
     if let Some(problem @ conformap_io::UvProblem::Missing { .. }) = &raw.uv_problem {
         return Err(conformap_io::IoError::NotPerVertexUv {

@@ -11,6 +11,7 @@ use conformap_render::{
 use conformap_sphere::sphere_points_from_corner_uv;
 use num_complex::Complex64;
 
+use crate::choice::Choice;
 use crate::failure::Failure;
 use crate::jobs::param::{on_unit_sphere, read_measured_map, MapFile, MeasuredMap, PlanarMap};
 use crate::pipeline::pictures::render_failure;
@@ -265,6 +266,16 @@ impl Coords {
 fn run(args: &RenderJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let svg = args.svg_output()?;
+    if let Some(c) = args
+        .color
+        .filter(|&c| args.view == RenderView::Histogram && c != RenderColor::Angle)
+    {
+        return Err(Failure::Usage(format!(
+            "--color {} does not apply to --view histogram: the histogram is of the angle \
+             distortion; drop --color (or pass --color angle)",
+            c.name()
+        )));
+    }
     check_outputs(&[("-o", &args.output, false)], &[&args.mesh, &args.param])?;
     context::stage(format!("reading {}", args.mesh.display()));
     let loaded = conformap_io::read_mesh(&args.mesh)?;

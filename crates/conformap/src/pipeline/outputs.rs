@@ -153,6 +153,17 @@ fn normalized(path: &Path) -> PathBuf {
 /// The directory of `path` exists and accepts a new file.
 fn check_directory(path: &Path) -> Result<(), Failure> {
     let dir = directory_of(path);
+    // a file where a directory is expected (`-o file.obj/x.obj`): say so
+    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+        return Err(Failure::BadInput(
+            format!(
+                "cannot write {}: {} is a file, not a directory",
+                path.display(),
+                file.display()
+            ),
+            Some("write the output into a directory (check the -o path)".to_string()),
+        ));
+    }
     if !dir.is_dir() {
         return Err(Failure::BadInput(
             format!(

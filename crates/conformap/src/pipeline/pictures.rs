@@ -91,7 +91,12 @@ pub fn render_failure(e: RenderError, path: &Path) -> Failure {
         }
         RenderError::Collapsed => "check the map: every vertex has the same image",
         RenderError::NonFiniteValue { .. } => "recompute the map: it holds NaN or infinity",
-        RenderError::InvalidOption { .. } => return Failure::Usage(e.to_string()),
+        RenderError::InvalidOption { name, reason } => {
+            return Failure::Usage(format!(
+                "invalid option {}: {reason}",
+                crate::failure::option_flag(name)
+            ))
+        }
         _ => "check that the output's directory is writable",
     };
     Failure::BadInput(
