@@ -171,10 +171,11 @@ impl BatchJob {
     /// Usage checks of the template: options naming one file cannot serve every input.
     fn check_template(&self) -> Result<(), Failure> {
         let map = self.template.as_map();
-        if map.output().flat.is_some() || map.input().vertex_map.is_some() {
+        let output = map.output();
+        if output.flat.is_some() || output.quality.is_some() || map.input().vertex_map.is_some() {
             return Err(Failure::Usage(
-                "--flat and --vertex-map name one file, not one per input: batch writes \
-                 DIR/<stem>.<ext> and DIR/<stem>.json"
+                "--flat, --quality-overlay and --vertex-map name one file, not one per input: \
+                 batch writes DIR/<stem>.<ext> and DIR/<stem>.json"
                     .to_string(),
             ));
         }
