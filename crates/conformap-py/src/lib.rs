@@ -17,9 +17,11 @@
 //! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
+//! - [`batch`]: `batch_one` (one input of `conformap batch`, for cohorts on a cluster).
 
 pub mod arrays;
 pub mod atlas;
+pub mod batch;
 pub mod errors;
 pub mod flatten;
 pub mod global;
@@ -48,5 +50,6 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(meshes::metrics, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_one, m)?)?;
     Ok(())
 }
