@@ -129,3 +129,34 @@ def test_cohort_on_dask_workers_writes_batch_lines(tmp_path):
             cli_mesh = line["outputs"][0].replace(str(tmp_path / "py"), str(tmp_path / "cli"))
             assert open(line["outputs"][0], "rb").read() == open(cli_mesh, "rb").read()
 
+
+def test_snakemake_rule(tmp_path):
+    """examples/snakemake/Snakefile with --cores 2 on a two-subject derivatives tree (opt-in:
+    Snakemake installs too slowly for CI; runs wherever it is installed)."""
+    import os
+
+    if shutil.which("snakemake", path=str(pathlib.Path(sys.executable).parent)) is None:
+        pytest.skip("snakemake is not installed in this venv")
+    import nibabel as nib
+    import nibabel.freesurfer as nfs
+    import numpy as np
+
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    deriv = tmp_path / "derivatives"
+    for sub, hemi, scale in [("01", "lh", 1.0), ("02", "rh", 40.0)]:
+        (deriv / f"sub-{sub}" / "surf").mkdir(parents=True)
+        nfs.write_geometry(str(deriv / f"sub-{sub}" / "surf" / f"{hemi}.white"), V * scale, F)
+    env = {**os.environ, "PATH": f"{cli_binary().parent}{os.pathsep}{os.environ['PATH']}"}
+    snakemake = pathlib.Path(sys.executable).parent / "snakemake"
+    proc = subprocess.run(
+        [str(snakemake), "-s", str(ROOT / "examples" / "snakemake" / "Snakefile"), "--cores", "2",
+         "--config", f"derivatives={deriv}", "--directory", str(tmp_path), "--quiet"],
+        capture_output=True, text=True, check=False, env=env)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    for sub, hemi in [("01", "lh"), ("02", "rh")]:
+        out = deriv / f"sub-{sub}" / "conformap"
+        S, T = nib.load(str(out / f"{hemi}.sphere.conformal.surf.gii")).agg_data(("pointset", "triangle"))
+        assert np.array_equal(T, F) and np.max(np.abs(np.linalg.norm(S, axis=1) - 100)) < 1e-4
+        overlay = nib.load(str(out / f"{hemi}.sphere.conformal.quality.shape.gii"))
+        assert [d.data.shape for d in overlay.darrays] == [(len(V),), (len(V),)]
+        assert json.loads((out / f"{hemi}.sphere.conformal.json").read_text())["solver"]["converged"]
