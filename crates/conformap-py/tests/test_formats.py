@@ -14,7 +14,7 @@ import pytest
 
 nib = pytest.importorskip("nibabel")  # CI installs it (.ci/run)
 import nibabel.freesurfer as nfs  # noqa: E402
-from nibabel.gifti import GiftiDataArray, GiftiImage  # noqa: E402
+from nibabel.gifti import GiftiCoordSystem, GiftiDataArray, GiftiImage  # noqa: E402
 
 import conformap  # noqa: E402
 from conftest import FIXTURES, cli_binary  # noqa: E402
@@ -28,9 +28,16 @@ def cli(*args):
                           check=False)
 
 
+# a scanner-to-Talairach transform on the point set, kept in the sphere --flat writes
+XFORM = np.array([[2.0, 0.0, 0.0, -1.5], [0.0, 0.0, 1.0, 2.0], [0.0, -1.0, 0.0, 0.25],
+                  [0.0, 0.0, 0.0, 1.0]])
+
+
 def write_gifti(path, V, F):
     img = GiftiImage()
-    img.add_gifti_data_array(GiftiDataArray(V.astype(np.float32), intent="NIFTI_INTENT_POINTSET"))
+    coordsys = GiftiCoordSystem(dataspace=3, xformspace=3, xform=XFORM)  # NIFTI_XFORM_TALAIRACH
+    img.add_gifti_data_array(GiftiDataArray(V.astype(np.float32), intent="NIFTI_INTENT_POINTSET",
+                                            coordsys=coordsys))
     img.add_gifti_data_array(GiftiDataArray(F.astype(np.int32), intent="NIFTI_INTENT_TRIANGLE"))
     nib.save(img, str(path))
 
@@ -102,6 +109,8 @@ def test_gifti_written_by_nibabel_maps_and_reads_back(tmp_path):
     img = nib.load(str(out / "spot.sphere.surf.gii"))
     S, F_out = img.agg_data(("pointset", "triangle"))
     check_sphere_outputs(V, F, (S, F_out), out / "quality.shape.gii", report)
+    kept = img.darrays[0].coordsys  # the input's coordinate system, read as nibabel reads it
+    assert (kept.dataspace, kept.xformspace) == (3, 3) and np.array_equal(kept.xform, XFORM)
 
 
 def test_freesurfer_written_by_nibabel_maps_and_reads_back(tmp_path):
