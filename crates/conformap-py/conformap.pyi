@@ -413,3 +413,39 @@ def write_mesh(
         g = report["global"]
         conformap.write_mesh("eight_uv.obj", V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
     """
+
+def batch_one(
+    path: PathLike,
+    command: Literal["disk", "sphere", "global", "flatten", "atlas"],
+    out_dir: PathLike,
+    *,
+    skip_existing: bool = False,
+    ext: Optional[str] = None,
+    png: bool = False,
+    max_memory: Optional[int] = None,
+    **options: Any,
+) -> dict[str, Any]:
+    """Maps one mesh file as ``conformap batch --command COMMAND --out-dir OUT_DIR PATH --
+    OPTIONS`` does, by the same Rust function, and returns that input's JSON line as a
+    dict: ``OUT_DIR/<stem>.<ext>`` and ``OUT_DIR/<stem>.json`` are written as batch writes
+    them; a failing input is a ``"failed"`` line (``exit_code``, ``exit_class``, ``error``,
+    ``hint``), an input whose outputs exist with ``skip_existing`` a ``"skipped"`` line.
+
+    ``options`` are the command's own options as keywords, parsed by the CLI's parser:
+    ``max_iter=50`` is ``--max-iter 50``, ``strict=True`` is ``--strict`` (``False`` and
+    ``None`` leave an option out), a list is joined by commas (``zeros=[3, 7]``).
+    ``skip_existing``, ``ext``, ``png`` and ``max_memory`` are batch's own options.
+
+    The GIL is released while the mesh is mapped: a thread pool or a Dask cluster (one
+    thread per worker process) maps a cohort in parallel; ``examples/python/cohort.py``
+    writes batch's lines from these dicts.
+
+    Raises ``ConformapError`` (exit code 2) for what batch refuses before running anything:
+    an unknown command or option, a path that is not a mesh (a manifest), an option naming
+    one file (``flat``).
+
+    Example::
+
+        line = conformap.batch_one("fixtures/woody.obj", "disk", "out", method="cem")
+        assert line["status"] == "ok" and line["outputs"] == ["out/woody.obj", "out/woody.json"]
+    """

@@ -18,9 +18,11 @@
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`, `repair`.
 //! - [`options`]: keyword arguments checked as the CLI's parser checks its flags.
+//! - [`batch`]: `batch_one` (one input of `conformap batch`, for cohorts on a cluster).
 
 pub mod arrays;
 pub mod atlas;
+pub mod batch;
 pub mod errors;
 pub mod flatten;
 pub mod global;
@@ -53,5 +55,6 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::repair, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_one, m)?)?;
     Ok(())
 }

@@ -36,6 +36,9 @@ use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, Out
 use crate::report::ms_since;
 
 pub mod inputs;
+mod one;
+
+pub use one::run_one;
 
 crate::choice! {
     /// The map command a batch runs.
@@ -172,10 +175,11 @@ impl BatchJob {
     /// Usage checks of the template: options naming one file cannot serve every input.
     fn check_template(&self) -> Result<(), Failure> {
         let map = self.template.as_map();
-        if map.output().flat.is_some() || map.input().vertex_map.is_some() {
+        let output = map.output();
+        if output.flat.is_some() || output.quality.is_some() || map.input().vertex_map.is_some() {
             return Err(Failure::Usage(
-                "--flat and --vertex-map name one file, not one per input: batch writes \
-                 DIR/<stem>.<ext> and DIR/<stem>.json"
+                "--flat, --quality-overlay and --vertex-map name one file, not one per input: \
+                 batch writes DIR/<stem>.<ext> and DIR/<stem>.json"
                     .to_string(),
             ));
         }
@@ -254,12 +258,7 @@ pub fn run(args: &BatchJob) -> Result<Outcome, Failure> {
 pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let inputs = collect_inputs(&args.inputs)?;
-    std::fs::create_dir_all(&args.out_dir).map_err(|e| {
-        Failure::BadInput(
-            format!("cannot create {}: {e}", args.out_dir.display()),
-            Some("write the outputs elsewhere (--out-dir)".to_string()),
-        )
-    })?;
+    create_out_dir(&args.out_dir)?;
     let jobs = inputs
         .iter()
         .map(|i| args.plan(i))
@@ -386,6 +385,16 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         )],
         exit_code,
         ..Outcome::default()
+    })
+}
+
+/// Creates the output directory (and its parents) if missing.
+fn create_out_dir(dir: &Path) -> Result<(), Failure> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        Failure::BadInput(
+            format!("cannot create {}: {e}", dir.display()),
+            Some("write the outputs elsewhere (--out-dir)".to_string()),
+        )
     })
 }
 

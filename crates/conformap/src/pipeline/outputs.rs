@@ -41,6 +41,10 @@ pub fn check_command_outputs(
     if let Some(p) = &output.report {
         outputs.push(("--report", p, false));
     }
+    if let Some(p) = &output.quality {
+        check_overlay(p)?;
+        outputs.push(("--quality-overlay", p, false));
+    }
     if let Some(p) = &input.vertex_map {
         outputs.push(("--vertex-map", p, false));
     }
@@ -84,6 +88,19 @@ fn check_writable(flag: &str, path: &Path, format: Format) -> Result<(), Failure
         } else {
             ".obj, .ply, .gltf, .glb, .surf.gii or a FreeSurfer surface"
         }
+    )))
+}
+
+/// `--quality-overlay` names a GIfTI data file: a usage error (exit 2) before anything is
+/// read otherwise.
+fn check_overlay(path: &Path) -> Result<(), Failure> {
+    if Format::from_path(path).is_ok_and(|f| f == Format::Gifti) {
+        return Ok(());
+    }
+    Err(Failure::Usage(format!(
+        "--quality-overlay {}: the per-vertex quality is a GIfTI data file: name it \
+         .shape.gii (or .func.gii)",
+        path.display()
     )))
 }
 
@@ -238,15 +255,30 @@ impl Staged {
             .map_err(|e| renamed(e.into(), &path, target))
     }
 
-    /// Stages points and triangles (see [`conformap_io::write_flat`]).
+    /// Stages points and triangles, keeping what `source` says about the input surface
+    /// when the output has its format (see [`conformap_io::write_flat_like`]).
     pub fn flat(
         &mut self,
         target: &Path,
         points: &[[f64; 3]],
         faces: &[[u32; 3]],
+        source: Option<&SourceInfo>,
     ) -> Result<(), Failure> {
         let path = self.stage_path(target);
-        conformap_io::write_flat(&path, points, faces).map_err(|e| renamed(e.into(), &path, target))
+        conformap_io::write_flat_like(&path, points, faces, source)
+            .map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages per-vertex data arrays as a GIfTI data file (see
+    /// [`conformap_io::write_vertex_data`]).
+    pub fn vertex_data(
+        &mut self,
+        target: &Path,
+        columns: &[(&str, &[f64])],
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_vertex_data(&path, columns)
+            .map_err(|e| renamed(e.into(), &path, target))
     }
 
     /// Stages OBJ frames of one set of triangles: `points(i)` gives the vertex positions
