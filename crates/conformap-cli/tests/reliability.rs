@@ -128,9 +128,10 @@ fn metrics_measures_sphere_maps_on_the_sphere() {
     let (out, flat) = (d.join("s.obj"), d.join("flat.obj"));
     conformap_ok(&["sphere", s(&spot), "-o", s(&out), "--flat", s(&flat)]);
     // before: judged as planar maps (121 flipped faces, E_C 138, image area 1e-15)
+    let mut means = Vec::new();
     for (map, from) in [
         (&flat, "unit-sphere positions"),
-        (&out, "equirectangular texture coordinates"),
+        (&out, "equirectangular texture coordinates per corner"),
     ] {
         let m = metrics_json(&spot, map);
         assert_eq!(m["domain"], "sphere", "{}", map.display());
@@ -138,12 +139,16 @@ fn metrics_measures_sphere_maps_on_the_sphere() {
         let q = &m["metrics"];
         assert_eq!(q["flipped_faces"], 0, "{}", map.display());
         assert_eq!(q["degenerate_faces"], 0);
-        // spot's sphere map: mean angle distortion about 1°; equirectangular rounding adds
-        // nothing visible
+        // spot's sphere map: mean angle distortion 2.95° from the exact points; the texture
+        // per corner gives the vertices within a face of a pole their faces' mean longitude
+        // (so that no face spans the texture), which the reading takes back only
+        // approximately: 3.08° there
         let mean = q["angle_distortion_deg"]["mean"].as_f64().unwrap();
-        assert!(mean > 0.0 && mean < 3.0, "{mean}");
+        means.push(mean);
+        assert!(mean > 0.0 && mean < 3.2, "{mean}");
         assert!(q["radius_residual_max"].as_f64().unwrap() < 1e-9);
     }
+    assert!(means[0] < 3.0 && (means[1] - means[0]).abs() < 0.2, "{means:?}");
     let text = conformap_ok(&["metrics", s(&spot), s(&flat)]);
     let text = String::from_utf8_lossy(&text.stdout).to_string();
     assert!(text.starts_with("sphere map of"), "{text}");

@@ -206,27 +206,11 @@ pub fn sphere_points(file: &MapFile, mesh: &TriMesh) -> Option<(Vec<[f64; 3]>, &
 }
 
 /// One unit-sphere point per vertex from equirectangular texture coordinates per corner
-/// (split at the seam meridian and the poles), when every vertex's corners name one point
-/// (within [`UNIT_SPHERE_TOL`]); `None` for a seamed planar map (an atlas).
+/// (split at the seam meridian, polar corners at their face's mean `u`, as `sphere -o`
+/// writes them): [`conformap_sphere::sphere_points_from_corner_uv`], the reading `render`
+/// and `mobius` use; `None` for a seamed planar map (an atlas).
 fn corner_sphere_points(mesh: &TriMesh, corners: &CornerUv) -> Option<Vec<[f64; 3]>> {
-    let mut points: Vec<Option<[f64; 3]>> = vec![None; mesh.num_vertices()];
-    for (face, tex) in mesh.faces().iter().zip(&corners.faces) {
-        for k in 0..3 {
-            let t = *corners.texcoords.get(tex[k] as usize)?;
-            let p = conformap_sphere::from_equirectangular_uv(t);
-            let slot = points.get_mut(face[k] as usize)?;
-            match slot {
-                None => *slot = Some(p),
-                Some(q) => {
-                    let d = (0..3).map(|i| (p[i] - q[i]).powi(2)).sum::<f64>().sqrt();
-                    if !(d <= UNIT_SPHERE_TOL) {
-                        return None;
-                    }
-                }
-            }
-        }
-    }
-    points.into_iter().collect()
+    conformap_sphere::sphere_points_from_corner_uv(mesh, &corners.texcoords, &corners.faces)
 }
 
 /// Reads a map file without geometric validation: a valid map crowds triangles far below
