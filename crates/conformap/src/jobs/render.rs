@@ -194,6 +194,8 @@ enum Coords {
     PlanarCorners(Vec<[Complex64; 3]>),
     Equirectangular(Vec<Complex64>),
     Sphere(Vec<[f64; 3]>),
+    /// The sphere points read back from an equirectangular texture per corner (`sphere -o`).
+    SphereFromCorners(Vec<[f64; 3]>),
 }
 
 impl Coords {
@@ -202,7 +204,7 @@ impl Coords {
             Self::Planar(z) => MapCoords::Planar(UvValues::PerVertex(z)),
             Self::PlanarCorners(z) => MapCoords::Planar(UvValues::PerCorner(z)),
             Self::Equirectangular(z) => MapCoords::Equirectangular(UvValues::PerVertex(z)),
-            Self::Sphere(p) => MapCoords::Sphere(p),
+            Self::Sphere(p) | Self::SphereFromCorners(p) => MapCoords::Sphere(p),
         }
     }
 
@@ -219,7 +221,7 @@ impl Coords {
             _ => None,
         };
         if let Some(points) = corner_points {
-            return Self::Sphere(points);
+            return Self::SphereFromCorners(points);
         }
         let sphere = match domain {
             ParamDomain::Plane => false,
@@ -253,6 +255,9 @@ impl Coords {
             Self::PlanarCorners(_) => "seamed planar map",
             Self::Equirectangular(_) => "sphere map (equirectangular texture coordinates)",
             Self::Sphere(_) => "sphere map (unit-sphere points)",
+            Self::SphereFromCorners(_) => {
+                "sphere map (equirectangular texture coordinates per corner)"
+            }
         }
     }
 }
