@@ -82,9 +82,8 @@ pub fn min_area_rect(points: &[[f64; 2]]) -> BoundingRect {
     best
 }
 
-/// The axis-aligned bounds of `points` turned by `angle`.
 /// Angles sampled over a quarter turn by [`min_square_rect`] before its refinement.
-const SQUARE_SAMPLES: usize = 128;
+pub const SQUARE_SAMPLES: usize = 128;
 
 /// The bounding rectangle of `points` whose longer side is shortest over all rotations:
 /// the smallest square that holds them, which bounds the scale of a chart packed alone.
@@ -123,6 +122,7 @@ pub fn min_square_rect(points: &[[f64; 2]]) -> BoundingRect {
     bounds(&hull, angle)
 }
 
+/// The axis-aligned bounds of `points` turned by `angle`.
 fn bounds(points: &[[f64; 2]], angle: f64) -> BoundingRect {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for &p in points {

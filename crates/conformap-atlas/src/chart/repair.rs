@@ -83,7 +83,7 @@ pub fn unfold(mesh: &TriMesh, uv: &mut [Complex64]) -> usize {
 /// faces out leave it invalid).
 ///
 /// # Errors
-/// None in practice: sub-pieces of a valid piece are valid (see [`super::split`]).
+/// None in practice: sub-pieces of a valid piece are valid (see the `split` module).
 pub fn detach_folded(piece: Piece) -> Result<Vec<Piece>, AtlasError> {
     let folded = folded_faces(&piece.mesh, &piece.uv);
     if folded.is_empty() {
