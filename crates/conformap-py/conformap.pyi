@@ -431,18 +431,23 @@ def batch_one(
     them; a failing input is a ``"failed"`` line (``exit_code``, ``exit_class``, ``error``,
     ``hint``), an input whose outputs exist with ``skip_existing`` a ``"skipped"`` line.
 
-    ``options`` are the command's own options as keywords, parsed by the CLI's parser:
-    ``max_iter=50`` is ``--max-iter 50``, ``strict=True`` is ``--strict`` (``False`` and
-    ``None`` leave an option out), a list is joined by commas (``zeros=[3, 7]``).
-    ``skip_existing``, ``ext``, ``png`` and ``max_memory`` are batch's own options.
+    ``options`` are the keywords of the command's function, with its defaults and checks
+    (the same Rust code builds the job): ``disk`` takes ``disk_map``'s (``method``,
+    ``outer``, ``max_iter``, ``tol``, ``keep_folds``, ``ordering``, ``strict``), ``sphere``
+    ``sphere_map``'s (``mobius``, ``strict``), ``global`` ``global_map``'s but
+    ``return_mesh`` (``region`` faces are checked against each input's mesh when it is
+    mapped), ``flatten`` ``flatten``'s (``values`` in memory) and ``atlas`` ``atlas``'s.
+    ``None`` is the default. ``skip_existing``, ``ext``, ``png`` and ``max_memory`` are
+    batch's own options (``max_memory`` is every input's memory limit).
 
     The GIL is released while the mesh is mapped: a thread pool or a Dask cluster (one
     thread per worker process) maps a cohort in parallel; ``examples/python/cohort.py``
     writes batch's lines from these dicts.
 
     Raises ``ConformapError`` (exit code 2) for what batch refuses before running anything:
-    an unknown command or option, a path that is not a mesh (a manifest), an option naming
-    one file (``flat``).
+    an unknown command, a keyword the command's function does not take (the message names
+    it, its ``hint`` lists the accepted ones), a bad value (the function's own message), a
+    path that is not a mesh (a manifest).
 
     Example::
 

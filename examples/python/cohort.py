@@ -6,8 +6,9 @@
         MESH|DIR... [-- COMMAND OPTIONS]
 
 Every input is one call of ``conformap.batch_one``: the Rust function ``conformap batch``
-runs for each of its inputs, with the command's options (after ``--``, as batch takes
-them) parsed by the CLI's parser. So the outputs (``OUT/<stem>.<ext>``,
+runs for each of its inputs, with the command's options (after ``--``, spelled as batch
+takes them: ``--max-iter 50``) given as the keywords of the command's Python function
+(``max_iter=50``, as ``disk_map`` takes it). So the outputs (``OUT/<stem>.<ext>``,
 ``OUT/<stem>.json``) and the JSON lines are batch's: one compact, key-sorted line per
 input in input order, then the summary line; exit code 0, or 4 when some input failed,
 2 on usage errors.
@@ -77,8 +78,22 @@ def json_line(value) -> str:
     return "[" + ",".join(json_line(v) for v in value) + "]"
 
 
+def option_value(text: str):
+    """An option's text as the keyword's value: `50` → 50, `1e-8` → 1e-08, `3,7` → [3, 7],
+    other text as it is (`cem`)."""
+    if "," in text:
+        return [option_value(t) for t in text.split(",")]
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
 def command_options(tokens):
-    """`--max-iter 50 --strict` → {"max_iter": "50", "strict": True} for batch_one."""
+    """`--max-iter 50 --strict` → {"max_iter": 50, "strict": True}: the keywords of the
+    command's Python function (``disk_map`` etc.), which batch_one takes."""
     options, k = {}, 0
     while k < len(tokens):
         name = tokens[k]
@@ -86,7 +101,7 @@ def command_options(tokens):
             raise SystemExit(f"error: the options after -- must be --name [value], got {name!r}")
         key = name[2:].replace("-", "_")
         if k + 1 < len(tokens) and not tokens[k + 1].startswith("--"):
-            options[key], k = tokens[k + 1], k + 2
+            options[key], k = option_value(tokens[k + 1]), k + 2
         else:
             options[key], k = True, k + 1
     return options

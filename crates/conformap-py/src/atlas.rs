@@ -1,14 +1,14 @@
 //! `atlas`: the `atlas` job (a texture atlas of any mesh) on arrays.
 
-use conformap::jobs::atlas::AtlasJob;
-use conformap::pipeline::{InputOptions, OutputOptions, TexCoords};
+use conformap::pipeline::TexCoords;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
-use crate::arrays::{faces_array, mesh_input, to_array, MEMORY_PATH};
+use crate::arrays::{faces_array, mesh_input, to_array};
 use crate::errors::bad_input;
+use crate::keywords;
 use crate::maps::{report_dict, run};
-use crate::options::{self, nonneg, opt_count};
+use crate::options;
 
 /// A texture atlas, as `conformap atlas`. See `conformap.pyi`.
 #[pyfunction]
@@ -29,13 +29,7 @@ pub fn atlas<'py>(
     Bound<'py, PyAny>,
     Bound<'py, PyAny>,
 )> {
-    let mut job = AtlasJob::new(
-        InputOptions::new(MEMORY_PATH),
-        OutputOptions::new(MEMORY_PATH).with_strict(strict),
-    );
-    job.cones = opt_count(cones, "cones")?;
-    job.resolution = nonneg(resolution, "resolution")?;
-    job.margin = margin;
+    let job = keywords::atlas_job(cones, resolution, margin, strict)?;
     let max_memory = options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;

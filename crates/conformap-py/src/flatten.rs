@@ -3,18 +3,17 @@
 
 use std::fmt::Write;
 
-use conformap::jobs::flatten::{FlattenJob, Interior};
-use conformap::pipeline::{InputOptions, OutputOptions};
 use conformap_disk::BoundarySpec;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
-use crate::arrays::{mesh_input, to_array, MEMORY_PATH};
+use crate::arrays::{mesh_input, to_array};
 use crate::errors::usage;
-use crate::maps::{choice, report_dict, run};
+use crate::keywords;
+use crate::maps::{report_dict, run};
 
 /// The boundary target from its name and, for `scale`, `angles` and `polygon`, its values.
-fn boundary_spec(
+pub(crate) fn boundary_spec(
     boundary: &str,
     values: Option<&[(u32, f64)]>,
 ) -> PyResult<(BoundarySpec, Option<String>)> {
@@ -53,7 +52,7 @@ fn boundary_spec(
 }
 
 /// `(vertex, value)` pairs from a dict or a sequence of pairs.
-fn pairs(values: &Bound<'_, PyAny>) -> PyResult<Vec<(u32, f64)>> {
+pub(crate) fn pairs(values: &Bound<'_, PyAny>) -> PyResult<Vec<(u32, f64)>> {
     let items = match values.cast::<pyo3::types::PyDict>() {
         Ok(d) => d.items().into_any(),
         Err(_) => values.clone(),
@@ -80,17 +79,7 @@ pub fn flatten<'py>(
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
-    let values = values.map(pairs).transpose()?;
-    let (spec, text) = boundary_spec(boundary, values.as_deref())?;
-    let mut job = FlattenJob::new(
-        InputOptions::new(MEMORY_PATH),
-        OutputOptions::new(MEMORY_PATH),
-    )
-    .with_boundary(spec)
-    .with_interior(choice::<Interior>("interior", interior)?);
-    job.corners = corners;
-    job.aspect = aspect;
-    job.boundary_text = text;
+    let job = keywords::flatten_job(boundary, values, corners, aspect, interior, strict)?;
     let max_memory = crate::options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;

@@ -7,19 +7,18 @@
 //! and `F_uv` `(m, 3)`, per face the row of each corner.
 
 use conformap::failure::Failure;
-use conformap::jobs::global::{Conjugate, FormObjective, GlobalJob};
-use conformap::pipeline::{InputOptions, OutputOptions, TexCoords};
+use conformap::pipeline::TexCoords;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::arrays::{faces_array, mesh_input, to_array, MEMORY_PATH};
-use crate::errors::{bad_input, to_py, usage};
-use crate::maps::{choice, report_dict, run};
-use crate::mobius::region_faces;
-use crate::options::{self, opt_count};
+use crate::arrays::{faces_array, mesh_input, to_array};
+use crate::errors::{bad_input, to_py};
+use crate::keywords;
+use crate::maps::{report_dict, run};
+use crate::options;
 
 /// Vertex indices from a Python sequence of integers; `name` names it in errors.
-fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
+pub(crate) fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
     let values: Vec<i64> = obj.extract().map_err(|_| {
         bad_input(format!(
             "{name} must be a sequence of integer vertex indices (0-based)"
@@ -63,52 +62,20 @@ pub fn global_map<'py>(
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let objective_value = choice::<FormObjective>("objective", objective)?;
-    let regional = matches!(
-        objective_value,
-        FormObjective::Emphasize | FormObjective::DeEmphasize
-    );
-    match (regional, region.is_some()) {
-        (true, false) => {
-            return Err(usage(format!(
-                "objective={objective:?} needs region=[face, ...] (0-based face indices)"
-            )))
-        }
-        (false, true) => {
-            return Err(usage(
-                "region is only used with objective=\"emphasize\" or \"de-emphasize\"",
-            ))
-        }
-        _ => {}
-    }
-    match (objective_value == FormObjective::Zeros, zeros.is_some()) {
-        (true, false) => {
-            return Err(usage(
-                "objective=\"zeros\" needs zeros=[vertex, ...] (0-based vertices)",
-            ))
-        }
-        (false, true) => return Err(usage("zeros is only used with objective=\"zeros\"")),
-        _ => {}
-    }
-    let conjugate = choice::<Conjugate>("conjugate", conjugate)?;
-    let zeros = zeros.map(|z| vertex_list(z, "zeros")).transpose()?;
+    let job = keywords::global_job(
+        objective,
+        form,
+        region,
+        zeros,
+        starts,
+        conjugate,
+        root,
+        topology_opt,
+        strict,
+    )?;
     let max_memory = options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
-    let region = region
-        .map(|r| region_faces(r, input.mesh.num_faces()))
-        .transpose()?;
-    let mut job = GlobalJob::new(
-        InputOptions::new(MEMORY_PATH),
-        OutputOptions::new(MEMORY_PATH).with_strict(strict),
-    )
-    .with_objective(objective_value)
-    .with_topology_opt(topology_opt);
-    job.form = opt_count(form, "form")?;
-    job.conjugate = conjugate;
-    job.zeros = zeros;
-    job.starts = opt_count(starts, "starts")?;
-    job.root = opt_count(root, "root")?;
-    job.region_faces = region;
+    let job = keywords::global_region(job, region, input.mesh.num_faces())?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     // a per-vertex layout (`topology_opt` on a genus-0 surface): `F_uv` is `F`
     let per_vertex_faces = input.mesh.faces().to_vec();

@@ -18,6 +18,7 @@
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`, `repair`.
 //! - [`options`]: keyword arguments checked as the CLI's parser checks its flags.
+//! - [`keywords`]: the keyword → job conversion the map functions and `batch_one` share.
 //! - [`batch`]: `batch_one` (one input of `conformap batch`, for cohorts on a cluster).
 
 pub mod arrays;
@@ -26,6 +27,7 @@ pub mod batch;
 pub mod errors;
 pub mod flatten;
 pub mod global;
+pub mod keywords;
 pub mod maps;
 pub mod meshes;
 pub mod mobius;

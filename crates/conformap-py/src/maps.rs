@@ -1,17 +1,16 @@
 //! `disk_map` and `sphere_map`: the `disk` and `sphere` jobs on arrays, through
 //! [`run_in_memory`], with the GIL released for the solve.
 
-use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
-use conformap::jobs::sphere::{SphereJob, SphereMobius};
-use conformap::pipeline::{run_in_memory, Input, InputOptions, MapJob, OutputOptions, Solved};
+use conformap::pipeline::{run_in_memory, Input, MapJob, Solved};
 use conformap::report::Report;
 use conformap::Choice;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
-use crate::arrays::{mesh_input, to_array, to_py_json, MEMORY_PATH};
+use crate::arrays::{mesh_input, to_array, to_py_json};
 use crate::errors::{bad_input, to_py, usage};
-use crate::options::{self, opt_count};
+use crate::keywords;
+use crate::options;
 
 /// A value of a job's option enum (`method`, `ordering`, `mobius`) by its name.
 pub(crate) fn choice<T: Choice>(name: &str, value: &str) -> PyResult<T> {
@@ -68,16 +67,7 @@ pub fn disk_map<'py>(
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
-    let mut args = DiskJob::new(
-        InputOptions::new(MEMORY_PATH),
-        OutputOptions::new(MEMORY_PATH),
-    )
-    .with_method(choice::<Method>("method", method)?)
-    .with_max_iter(opt_count(max_iter, "max_iter")?)
-    .with_tol(tol);
-    args.ordering = choice::<FactorOrder>("ordering", ordering)?;
-    args.outer = opt_count(outer, "outer")?;
-    args.keep_folds = keep_folds;
+    let args = keywords::disk_job(method, outer, max_iter, tol, keep_folds, ordering, strict)?;
     let max_memory = options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &args, &input, max_memory, strict)?;
@@ -101,11 +91,7 @@ pub fn sphere_map<'py>(
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
-    let args = SphereJob::new(
-        InputOptions::new(MEMORY_PATH),
-        OutputOptions::new(MEMORY_PATH),
-    )
-    .with_mobius(choice::<SphereMobius>("mobius", mobius)?);
+    let args = keywords::sphere_job(mobius, strict)?;
     let max_memory = options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &args, &input, max_memory, strict)?;

@@ -42,7 +42,7 @@ def batch(command, out_dir, inputs, *extra, options=()):
 @pytest.mark.parametrize("command, names, options, kwargs", [
     ("disk", ["woody.obj", "spot.obj", "halftunnel.obj"], ["--method", "cem", "--max-iter", "30"],
      {"method": "cem", "max_iter": 30}),
-    ("global", ["eightsim.obj", "woody.obj"], ["--quiet"], {"quiet": True}),
+    ("global", ["eightsim.obj", "woody.obj"], ["--conjugate", "nearest"], {"conjugate": "nearest"}),
 ])
 def test_batch_one_dict_is_batch_line(command, names, options, kwargs, tmp_path):
     inputs = [FIXTURES / n for n in names]
@@ -71,7 +71,7 @@ def test_batch_one_dict_is_batch_line(command, names, options, kwargs, tmp_path)
 def test_batch_one_refuses_what_batch_refuses(tmp_path):
     with pytest.raises(conformap.ConformapError) as e:
         conformap.batch_one(FIXTURES / "woody.obj", "disk", tmp_path, no_such_option=3)
-    assert e.value.exit_code == 2 and "--no-such-option" in str(e.value)
+    assert e.value.exit_code == 2 and "no_such_option" in str(e.value)
     with pytest.raises(conformap.ConformapError) as e:
         conformap.batch_one(FIXTURES / "woody.obj", "disc", tmp_path)
     assert e.value.exit_code == 2 and "disk" in str(e.value)
@@ -160,3 +160,74 @@ def test_snakemake_rule(tmp_path):
         overlay = nib.load(str(out / f"{hemi}.sphere.conformal.quality.shape.gii"))
         assert [d.data.shape for d in overlay.darrays] == [(len(V),), (len(V),)]
         assert json.loads((out / f"{hemi}.sphere.conformal.json").read_text())["solver"]["converged"]
+
+
+MAP_FUNCTIONS = {"disk": conformap.disk_map, "sphere": conformap.sphere_map,
+                 "global": conformap.global_map, "flatten": conformap.flatten,
+                 "atlas": conformap.atlas}
+
+
+@pytest.mark.parametrize("command", sorted(MAP_FUNCTIONS))
+def test_batch_one_takes_the_map_functions_keywords(command, tmp_path):
+    """An unknown keyword is refused before anything runs, naming it and listing the
+    accepted ones: the map function's keywords (not the arrays, not max_memory, which is
+    batch's own, nor return_mesh, which shapes global_map's return value)."""
+    import inspect
+
+    own = [p for p in inspect.signature(MAP_FUNCTIONS[command]).parameters
+           if p not in ("V", "F", "max_memory", "return_mesh")]
+    with pytest.raises(conformap.ConformapError) as e:
+        conformap.batch_one(FIXTURES / "woody.obj", command, tmp_path, quiet=True)
+    assert e.value.exit_code == 2 and "quiet is not a keyword of " + command in str(e.value)
+    assert e.value.hint.startswith(f"{command} accepts {', '.join(own)} (as ")
+    assert not tmp_path.joinpath("woody.json").exists()
+
+
+@pytest.mark.parametrize("command, kwargs", [
+    ("disk", {"max_iter": -1}), ("disk", {"method": "nope"}), ("disk", {"outer": 2.5}),
+    ("sphere", {"mobius": "nope"}), ("global", {"objective": "zeros"}),
+    ("global", {"region": [0]}), ("flatten", {"boundary": "scale"}),
+    ("flatten", {"values": {0: 1.0}}), ("atlas", {"resolution": -1}),
+])
+def test_batch_one_checks_keywords_as_the_map_function(command, kwargs, tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "woody.obj")
+    with pytest.raises(conformap.ConformapError) as theirs:
+        MAP_FUNCTIONS[command](V, F, **kwargs)
+    with pytest.raises(conformap.ConformapError) as mine:
+        conformap.batch_one(FIXTURES / "woody.obj", command, tmp_path, **kwargs)
+    assert str(mine.value) == str(theirs.value)
+    assert mine.value.exit_code == theirs.value.exit_code == 2
+
+
+def test_batch_one_flatten_values_and_global_region(tmp_path):
+    """Keywords held in memory by the map functions (flatten's values, global's region)
+    reach the batch job: the same numbers as the map function; a region face beyond an
+    input's mesh fails that input, with the map function's message."""
+    from collections import Counter
+
+    V, F = conformap.read_mesh(FIXTURES / "woody.obj")
+    edges = Counter(tuple(sorted((int(f[k]), int(f[(k + 1) % 3])))) for f in F for k in range(3))
+    boundary = sorted({v for e, n in edges.items() if n == 1 for v in e})
+    assert len(boundary) == 119
+    values = {v: 0.25 for v in boundary}
+    for kwargs in ({"boundary": "scale", "values": values},
+                   {"boundary": "rectangle", "aspect": 2.0}):
+        uv, report = conformap.flatten(V, F, **kwargs)
+        line = conformap.batch_one(FIXTURES / "woody.obj", "flatten", tmp_path / kwargs["boundary"],
+                                   **kwargs)
+        assert line["status"] == "ok"
+        for key in ("conformal_energy", "image_area"):
+            assert line["metrics"][key] == pytest.approx(report["metrics"][key], rel=1e-9), key
+    # boundary scale 0.25 everywhere: lengths e^0.25 times the mesh's, against a free boundary
+    free = conformap.batch_one(FIXTURES / "woody.obj", "flatten", tmp_path / "free")
+    scaled = json.loads((tmp_path / "scale" / "woody.json").read_text())
+    assert scaled["metrics"]["image_area"] > free["metrics"]["image_area"]
+    Vo, Fo = conformap.read_mesh(FIXTURES / "eightsim.obj")
+    far = len(Fo) + 5
+    with pytest.raises(conformap.ConformapError) as e:
+        conformap.global_map(Vo, Fo, "emphasize", region=[0, far])
+    line = conformap.batch_one(FIXTURES / "eightsim.obj", "global", tmp_path,
+                               objective="emphasize", region=[0, far])
+    assert line["status"] == "failed" and line["exit_code"] == 1
+    assert f"region[1]: face {far} is out of range" in line["error"]
+    assert f"region[1]: face {far} is out of range" in str(e.value)

@@ -17,7 +17,7 @@ STUBS = pathlib.Path(__file__).resolve().parents[1] / "conformap.pyi"
 
 def stub_functions():
     """{name: [(parameter, default or inspect.Parameter.empty)]} of the stubs' functions
-    (the first of overloads)."""
+    (the first of overloads), a `**kwargs` last."""
     tree = ast.parse(STUBS.read_text())
     out = {}
     for node in tree.body:
@@ -32,13 +32,15 @@ def stub_functions():
                 (p.arg, inspect.Parameter.empty if d is None else ast.literal_eval(d))
                 for p, d in zip(a.kwonlyargs, a.kw_defaults)
             ]
+            if a.kwarg is not None:  # batch_one's **options
+                params.append((a.kwarg.arg, inspect.Parameter.empty))
             out[node.name] = params
     return out
 
 
 def test_signatures_are_the_stubs():
     stubs = stub_functions()
-    assert len(stubs) == 12
+    assert len(stubs) == 14
     for name, params in stubs.items():
         runtime = inspect.signature(getattr(conformap, name)).parameters
         assert [p for p, _ in params] == list(runtime), name

@@ -17,7 +17,7 @@ use conformap_mesh::TriMesh;
 use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
-use crate::jobs::param::read_region;
+use crate::jobs::param::{read_region, region_face};
 use crate::jobs::{global_solved, global_topology};
 use crate::pipeline::{Input, InputOptions, MapJob, OutputOptions, Solved};
 
@@ -238,7 +238,12 @@ impl MapJob for GlobalJob {
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
         let region = match (&self.region_faces, &self.region) {
-            (Some(faces), _) => faces.clone(),
+            // checked again here: a batch template's faces meet each input's mesh only now
+            (Some(faces), _) => faces
+                .iter()
+                .enumerate()
+                .map(|(k, &f)| region_face(f, mesh.num_faces(), &format!("region[{k}]")))
+                .collect::<Result<_, _>>()?,
             (None, Some(path)) => read_region(path, mesh.num_faces())?,
             (None, None) => Vec::new(),
         };
