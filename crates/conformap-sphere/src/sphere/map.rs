@@ -496,7 +496,6 @@ type Correction = (Option<Vec<[f64; 3]>>, usize, f64);
 /// more than it did on the whole, and the fresh fill-reducing ordering it saves was a third
 /// of each correction's factorization (armadillo: the three factorizations 235–245 → 191–194
 /// ms).
-#[allow(clippy::type_complexity)] // (new points or none, vertices kept, factorization ms)
 fn correct(
     l: &CsMat<f64>,
     points: &[[f64; 3]],
