@@ -59,6 +59,7 @@ mod error;
 mod mobius;
 mod sphere;
 mod stereo;
+mod summary;
 
 #[doc(hidden)]
 pub mod doc_support;
@@ -96,6 +97,7 @@ pub use stereo::{
     equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
     inverse_stereographic_south, stereographic, stereographic_south,
 };
+pub use summary::{double_cover_peak_bytes, mobius_peak_bytes, sphere_peak_bytes};
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]
