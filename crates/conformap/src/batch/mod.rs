@@ -212,7 +212,7 @@ impl BatchJob {
         let mut outputs = vec![mesh_out, report];
         if self.png {
             let prefix = self.out_dir.join(&input.stem);
-            outputs.extend(crate::pipeline::pictures::png_paths(&prefix));
+            outputs.extend(crate::pipeline::outputs::png_paths(&prefix));
             output.png = Some(prefix);
         }
         Ok(Job {
@@ -420,7 +420,7 @@ fn run_job(job: &Job, skip_existing: bool, own_peak: bool) -> Value {
             "command": r.command,
             "method": r.method,
             "outputs": outputs,
-            "converged": r.solver.converged,
+            "converged": r.solver.summary.converged,
             "metrics": r.metrics,
             "timings_ms": r.timings_ms,
             "memory": r.memory,

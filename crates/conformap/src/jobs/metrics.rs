@@ -4,13 +4,39 @@ use std::path::PathBuf;
 
 use std::fmt::Write;
 
-use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
-use serde_json::json;
+use conformap_metrics::{corner_map_metrics, planar_map_metrics, MapMetrics, MetricsOptions};
+use serde::Serialize;
 
 use crate::failure::Failure;
 use crate::jobs::param::{read_map_file, PlanarMap};
 use crate::pipeline::Outcome;
-use crate::report::InputInfo;
+use crate::report::{InputInfo, Sorted};
+
+/// The report of `conformap metrics --json` (written with its keys sorted at every depth:
+/// [`Sorted`]).
+#[derive(Debug, Clone, Serialize)]
+#[non_exhaustive]
+pub struct MetricsReport {
+    /// The version of conformap that wrote it.
+    pub conformap_version: &'static str,
+    /// Always `metrics`.
+    pub command: &'static str,
+    /// The mesh.
+    pub input: InputInfo,
+    /// The map and where it was read from.
+    pub param: MetricsParam,
+    /// How good the map is.
+    pub metrics: MapMetrics,
+}
+
+/// The `param` object of a metrics report.
+#[derive(Debug, Clone, Serialize)]
+pub struct MetricsParam {
+    /// Path as given (`<array>` from Python).
+    pub path: String,
+    /// Which data of the file held the map (`texture coordinates`, …).
+    pub map_from: String,
+}
 
 /// Arguments of `conformap metrics`.
 #[non_exhaustive]
@@ -64,19 +90,22 @@ pub fn metrics_report(
     map: &PlanarMap,
     param: &str,
     source: &str,
-) -> Result<serde_json::Value, Failure> {
+) -> Result<MetricsReport, Failure> {
     let metrics = match map {
         PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
         PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
     }
     .map_err(Failure::input)?;
-    Ok(json!({
-        "conformap_version": env!("CARGO_PKG_VERSION"),
-        "command": "metrics",
-        "input": InputInfo::new(mesh_path, mesh),
-        "param": { "path": param, "map_from": source },
-        "metrics": metrics,
-    }))
+    Ok(MetricsReport {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: "metrics",
+        input: InputInfo::new(mesh_path, mesh),
+        param: MetricsParam {
+            path: param.to_string(),
+            map_from: source.to_string(),
+        },
+        metrics,
+    })
 }
 
 /// Runs `conformap metrics`: the metrics as text or JSON, for stdout.
@@ -85,7 +114,7 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
     let mesh = &loaded.mesh;
     let param = read_map_file(&args.param, &args.mesh, mesh)?;
     let (map, source) = param.planar_map();
-    let value = metrics_report(
+    let report = metrics_report(
         mesh,
         &args.mesh,
         &map,
@@ -95,9 +124,9 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
     .map_err(|f| f.in_file(&args.param))?;
     let mut out = String::new();
     if args.json {
-        out = serde_json::to_string_pretty(&value).unwrap_or_default();
+        out = serde_json::to_string_pretty(&Sorted(&report)).unwrap_or_default();
     } else {
-        let m = &value["metrics"];
+        let m = &report.metrics;
         let mut say = |line: String| {
             let _ = writeln!(out, "{line}");
         };
@@ -106,29 +135,29 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
             args.mesh.display(),
             args.param.display()
         ));
-        for key in [
-            "conformal_energy",
-            "dirichlet_energy",
-            "image_area",
-            "flipped_faces",
-            "degenerate_faces",
-            "circle_residual_max",
-        ] {
-            say(format!("{key:22} {}", m[key]));
+        let numbers = [
+            ("conformal_energy", json_text(&m.conformal_energy)),
+            ("dirichlet_energy", json_text(&m.dirichlet_energy)),
+            ("image_area", json_text(&m.image_area)),
+            ("flipped_faces", json_text(&m.flipped_faces)),
+            ("degenerate_faces", json_text(&m.degenerate_faces)),
+            ("circle_residual_max", json_text(&m.circle_residual_max)),
+            ("angle_distortion_deg", json_text(&m.angle_distortion_deg)),
+            ("beltrami_abs", json_text(&m.beltrami_abs)),
+            ("area_distortion_log", json_text(&m.area_distortion_log)),
+        ];
+        for (key, value) in numbers {
+            say(format!("{key:22} {value}"));
         }
-        say(format!(
-            "{:22} {}",
-            "angle_distortion_deg", m["angle_distortion_deg"]
-        ));
-        say(format!("{:22} {}", "beltrami_abs", m["beltrami_abs"]));
-        say(format!(
-            "{:22} {}",
-            "area_distortion_log", m["area_distortion_log"]
-        ));
         out.pop();
     }
     Ok(Outcome {
         stdout: Some(out),
         ..Outcome::default()
     })
+}
+
+/// `value` as compact JSON with sorted keys (the text output shows the statistics so).
+fn json_text(value: &impl Serialize) -> String {
+    serde_json::to_string(&Sorted(value)).unwrap_or_default()
 }

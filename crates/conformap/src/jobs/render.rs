@@ -9,9 +9,9 @@ use conformap_render::{
 };
 use num_complex::Complex64;
 
+use crate::failure::render_failure;
 use crate::failure::Failure;
 use crate::jobs::param::{on_unit_sphere, read_map_file, MapFile, PlanarMap};
-use crate::pipeline::pictures::render_failure;
 use crate::pipeline::{check_outputs, context, Outcome, Staged};
 use crate::report::ms_since;
 
