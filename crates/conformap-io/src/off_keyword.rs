@@ -1,7 +1,8 @@
-//! The OFF keyword (`OFF`, `COFF`, `STOFF`, …), shared by [`Format::sniff`](crate::Format::sniff) and the OFF
-//! reader.
+//! The OFF keyword (`OFF`, `COFF`, `STOFF`, …), shared by
+//! [`Format::sniff`](crate::Format::sniff) and the OFF reader.
 
-/// Whether the first word of `text` is an OFF keyword (for [`Format::sniff`](crate::Format::sniff)).
+/// Whether the first word of `text` is an OFF keyword (for
+/// [`Format::sniff`](crate::Format::sniff)).
 pub(crate) fn is_off_header(text: &[u8]) -> bool {
     let word = text
         .split(|b| b.is_ascii_whitespace())

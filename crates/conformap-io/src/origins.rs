@@ -97,7 +97,7 @@ fn prim_of(
     prims.get(i.checked_sub(1)?)
 }
 
-/// See [`RawMesh::origin_of`].
+/// See [`RawMesh::origin_of`](crate::RawMesh::origin_of).
 pub(crate) fn origin_in(
     src: &SourceInfo,
     origins: &GltfOrigins,

@@ -42,8 +42,9 @@ pub struct Solved {
     /// adds).
     pub summary: String,
     /// Where this result lands for the `--png` pictures when it differs from the
-    /// command's [`MapJob::picture_domain`](crate::pipeline::MapJob::picture_domain) (`global --topology-opt` returning the
-    /// starting sphere map: drawn as `sphere` draws it); `None`: the command's.
+    /// command's [`MapJob::picture_domain`](crate::pipeline::MapJob::picture_domain)
+    /// (`global --topology-opt` returning the starting sphere map: drawn as `sphere` draws
+    /// it); `None`: the command's.
     pub picture_domain: Option<PictureDomain>,
 }
 
