@@ -16,11 +16,15 @@ Example::
     print(report["metrics"]["conformal_energy"])
 
 Every map command of the CLI is bound: ``disk_map``, ``sphere_map``, ``mobius``,
-``global_map`` (a seamed layout: ``uv`` and ``F_uv``), ``morph``; and ``metrics``, ``info``,
-``read_mesh``, ``write_mesh``.
+``global_map`` (a seamed layout: ``uv`` and ``F_uv``), ``morph``, ``flatten``, ``atlas``; and
+``metrics``, ``info``, ``read_mesh``, ``write_mesh``, ``repair`` (the CLI's ``--repair``).
+Arguments are spelled as here (``V``, ``F``, ``max_iter``, ...), by position or by keyword.
 
 Exceptions carry ``exit_code`` (the CLI's: 1 bad input, 2 usage error, 3 numerical failure)
-and ``hint`` (the CLI's ``hint:`` line, or ``None``).
+and ``hint`` (the CLI's ``hint:`` line, or ``None``). Messages name keywords, not CLI flags
+(``tol``, ``outer=5``); errors about the arrays passed start with ``<arrays>:``. A negative
+count (``max_iter``, ``frames``, ``form``, ...) or ``max_memory=0`` raises ConformapError with
+``exit_code`` 2, as the CLI's parser refuses such flags.
 """
 
 import os
@@ -160,6 +164,25 @@ def sphere_map(
         S, report = conformap.sphere_map(*conformap.read_mesh("fixtures/spot.obj"), mobius="uniform")
     """
 
+def sphere_uv(
+    S: ArrayLike,
+    F: ArrayLike,
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """The texture of a sphere map, as ``conformap sphere -o`` writes it.
+
+    Returns ``(uv, F_uv)``: equirectangular coordinates ``u = (atan2(y, x) + π)/2π``,
+    ``v = (asin z + π/2)/π``, one row of ``F_uv`` per face. ``u`` is continuous within each
+    face: a face crossing the seam meridian keeps its corners together (some ``u`` in
+    (1, 1.25); sample with REPEAT wrapping), and faces at the poles fan out from them.
+
+    Example::
+
+        V, F = conformap.read_mesh("fixtures/spot.obj")
+        S, report = conformap.sphere_map(V, F)
+        uv, F_uv = conformap.sphere_uv(S, F)
+        conformap.write_mesh("spot_sphere.obj", V, F, uv=uv, F_uv=F_uv)
+    """
+
 def mobius(
     V: ArrayLike,
     F: ArrayLike,
@@ -208,6 +231,7 @@ def global_map(
     starts: Optional[int] = None,
     conjugate: Literal["nearest", "gu-yau"] = "nearest",
     root: Optional[int] = None,
+    topology_opt: bool = False,
     return_mesh: Literal[False] = False,
     strict: bool = False,
     max_memory: Optional[int] = None,
@@ -224,6 +248,7 @@ def global_map(
     starts: Optional[int] = None,
     conjugate: Literal["nearest", "gu-yau"] = "nearest",
     root: Optional[int] = None,
+    topology_opt: bool = False,
     return_mesh: Literal[True],
     strict: bool = False,
     max_memory: Optional[int] = None,
@@ -254,6 +279,10 @@ def global_map(
     indices), ``"zeros"`` (zeros nearest the vertices ``zeros``; genus ≥ 2), ``"basis"``
     (the basis form of lowest uniformity energy); ``form=K`` lays out basis form K
     instead. ``conjugate``, ``root``: the CLI's ``--conjugate``, ``--root``.
+    ``topology_opt=True``: the CLI's ``--topology-opt`` (Jin et al. §3.5: slits that make the
+    map more uniform; also takes closed genus-0 surfaces), ``report["topology_opt"]`` says
+    what was returned; when that is a sphere map (genus 0, no slit paid), ``uv`` holds its
+    (n, 3) unit vectors and ``F_uv`` is ``F``.
 
     A surface with boundary chords (an interior edge joining two boundary vertices) is
     refined by its double covering: the layout then belongs to a refined mesh (its first
@@ -284,7 +313,8 @@ def morph(
     every frame has the vertices and faces of the first. ``landmarks``: one list per
     surface, the same number in every list: 0-based vertex indices (landmark j of every
     surface corresponds; named ``"0"``, ``"1"``, ... in the report), or dicts
-    ``name -> vertex`` (the same names in the same order, as the CLI's landmark files).
+    ``name -> vertex`` (the same names in every dict, matched by name: their order need not
+    agree).
     The first landmark goes to the centre of the disk, the second fixes the rotation:
     both must be interior vertices. ``frames``: N ≥ number of surfaces (key surface k at
     frame round(k (N−1)/(K−1))). ``lambda_``: the landmark weight λ of Eq. 34
@@ -294,7 +324,8 @@ def morph(
     first surface's vertices at each frame (``frames[0]`` is ``V1`` bit for bit); ``F``
     (m, 3) int64, the first surface's faces; the CLI's report dict (``inputs`` named
     ``<surfaces[k]>``, ``landmark_files`` ``<landmarks[k]>``; errors name them the same
-    way).
+    way). The result array is estimated first: frames that would not fit in the memory
+    available raise ConformapError before any work.
 
     Example::
 
@@ -323,12 +354,38 @@ def info(V: ArrayLike, F: ArrayLike) -> dict[str, Any]:
         conformap.info(V, F)["boundary_loop_sizes"]
     """
 
-def read_mesh(path: PathLike) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
-    """Reads an OBJ / glTF / GLB mesh as ``(V, F)``: float64 (n, 3), int64 (m, 3).
+def read_mesh(
+    path: PathLike, repair: bool = False
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """Reads a mesh file (OBJ, glTF / GLB, PLY, STL, OFF, GIfTI, FreeSurfer) as ``(V, F)``:
+    float64 (n, 3), int64 (m, 3). A file that is not a valid mesh raises ConformapError;
+    ``repair=True`` applies the CLI's ``--repair`` first (as ``repair``), so a slightly
+    dirty file (duplicate faces, unreferenced or coincident vertices, faces flipped, stray
+    components) loads.
 
     Example::
 
         V, F = conformap.read_mesh("fixtures/woody.obj")
+        V, F = conformap.read_mesh("fixtures/bad/dirty_disk.obj", repair=True)
+    """
+
+def repair(
+    V: ArrayLike, F: ArrayLike
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """The CLI's ``--repair`` on arrays: coincident vertices welded (a triangle soup becomes
+    a mesh), duplicate faces and unreferenced vertices dropped, the largest component kept,
+    faces oriented consistently. Defects no repair fixes safely (non-manifold elements,
+    degenerate faces, NaN) raise ConformapError naming the element.
+
+    Returns ``(V, F, vertex_map)``: the repaired mesh, and for each of its vertices the row
+    of the input ``V`` it comes from (int64 (k,)).
+
+    Example::
+
+        V, F = conformap.read_mesh("fixtures/woody.obj")
+        soup_V, soup_F = V[F.ravel()], np.arange(F.size).reshape(-1, 3)
+        R, RF, vertex_map = conformap.repair(soup_V, soup_F)
+        assert R.shape == V.shape and RF.shape == F.shape
     """
 
 def write_mesh(
@@ -343,10 +400,52 @@ def write_mesh(
     (k, 2), ``F_uv`` (m, 3) rows of ``uv`` per face corner, as ``global_map`` returns:
     OBJ ``f v/vt``, glTF split along the seams).
 
+    An empty mesh (no faces) and NaN or infinite ``uv`` raise ConformapError: what is
+    written reads back with ``read_mesh``.
+
     Example::
 
+        V, F = conformap.read_mesh("fixtures/woody.obj")
+        uv, _ = conformap.disk_map(V, F)
         conformap.write_mesh("woody_uv.obj", V, F, uv=(uv + 1) / 2)
-        uv, F_uv, report = conformap.global_map(*conformap.read_mesh("fixtures/eightsim.obj"))
+        V, F = conformap.read_mesh("fixtures/eightsim.obj")
+        uv, F_uv, report = conformap.global_map(V, F)
         g = report["global"]
         conformap.write_mesh("eight_uv.obj", V, F, uv=(uv - g["uv_offset"]) * g["uv_scale"], F_uv=F_uv)
+    """
+
+def batch_one(
+    path: PathLike,
+    command: Literal["disk", "sphere", "global", "flatten", "atlas"],
+    out_dir: PathLike,
+    *,
+    skip_existing: bool = False,
+    ext: Optional[str] = None,
+    png: bool = False,
+    max_memory: Optional[int] = None,
+    **options: Any,
+) -> dict[str, Any]:
+    """Maps one mesh file as ``conformap batch --command COMMAND --out-dir OUT_DIR PATH --
+    OPTIONS`` does, by the same Rust function, and returns that input's JSON line as a
+    dict: ``OUT_DIR/<stem>.<ext>`` and ``OUT_DIR/<stem>.json`` are written as batch writes
+    them; a failing input is a ``"failed"`` line (``exit_code``, ``exit_class``, ``error``,
+    ``hint``), an input whose outputs exist with ``skip_existing`` a ``"skipped"`` line.
+
+    ``options`` are the command's own options as keywords, parsed by the CLI's parser:
+    ``max_iter=50`` is ``--max-iter 50``, ``strict=True`` is ``--strict`` (``False`` and
+    ``None`` leave an option out), a list is joined by commas (``zeros=[3, 7]``).
+    ``skip_existing``, ``ext``, ``png`` and ``max_memory`` are batch's own options.
+
+    The GIL is released while the mesh is mapped: a thread pool or a Dask cluster (one
+    thread per worker process) maps a cohort in parallel; ``examples/python/cohort.py``
+    writes batch's lines from these dicts.
+
+    Raises ``ConformapError`` (exit code 2) for what batch refuses before running anything:
+    an unknown command or option, a path that is not a mesh (a manifest), an option naming
+    one file (``flat``).
+
+    Example::
+
+        line = conformap.batch_one("fixtures/woody.obj", "disk", "out", method="cem")
+        assert line["status"] == "ok" and line["outputs"] == ["out/woody.obj", "out/woody.json"]
     """

@@ -1,26 +1,26 @@
-"""Map a folder of meshes in parallel, writing the JSON lines of `conformap batch`.
+"""Map a cohort of meshes in parallel, writing what `conformap batch` writes.
 
-    python examples/python/cohort.py MESH_DIR --out-dir OUT [--command disk|sphere|global]
-                                     [--workers N] [--skip-existing] [--ext obj|gltf|glb]
-                                     [--report cohort.jsonl]
+    python examples/python/cohort.py --command disk|sphere|global|flatten|atlas
+        --out-dir OUT [--jobs N] [--skip-existing] [--ext obj|ply|gltf|glb] [--png]
+        [--max-memory BYTES] [--report cohort.jsonl] [--scheduler ADDRESS]
+        MESH|DIR... [-- COMMAND OPTIONS]
 
-Uses Dask (a LocalCluster, one thread per worker process) when it is installed, else
-``concurrent.futures.ThreadPoolExecutor``: conformap releases the GIL, so threads run maps
-in parallel. The outputs and lines are those of ``conformap batch --command C --out-dir OUT``:
-``OUT/<stem>.<ext>`` (the mesh with the map as texture coordinates, as the command's ``-o``
-writes it) and ``OUT/<stem>.json`` (the command's report); one JSON line per mesh, in input
-order, with the fields of batch's lines (``ok``: input, status, command, method, outputs,
-converged, metrics, timings_ms, memory; ``failed``: input, status, exit_code, exit_class,
-error, hint, time_ms; ``skipped``: input, status, outputs), then batch's summary line.
-Exit code 0, or 4 when some mesh failed, as batch.
+Every input is one call of ``conformap.batch_one``: the Rust function ``conformap batch``
+runs for each of its inputs, with the command's options (after ``--``, as batch takes
+them) parsed by the CLI's parser. So the outputs (``OUT/<stem>.<ext>``,
+``OUT/<stem>.json``) and the JSON lines are batch's: one compact, key-sorted line per
+input in input order, then the summary line; exit code 0, or 4 when some input failed,
+2 on usage errors.
 
-On a cluster, replace the LocalCluster by ``Client("tcp://scheduler:8786")`` (or a
-dask-jobqueue ``SLURMCluster`` / ``PBSCluster``, one core per job): the task takes a path
-and returns a dict, so it runs on any worker that has the wheel installed and sees the
-files. Give each worker one thread (each map already uses the machine's rayon threads).
+``--jobs N`` (N > 1) runs the inputs on a ``dask.distributed`` LocalCluster of N worker
+processes with one thread each (or, without Dask, on N threads: conformap releases the
+GIL). ``--scheduler tcp://host:8786`` sends them to a running Dask cluster instead (e.g.
+a dask-jobqueue ``SLURMCluster``; see docs/cohorts.md): every worker needs the wheel and
+the files. A directory stands for its mesh files, sorted by name.
 """
 
 import argparse
+import decimal
 import json
 import math
 import pathlib
@@ -28,143 +28,159 @@ import resource
 import sys
 import time
 
-import numpy as np
-
 import conformap
 
-MESH_SUFFIXES = {".obj", ".gltf", ".glb"}
-EXIT_CLASS = {1: "bad input", 2: "usage", 3: "numerical"}
+MESH_SUFFIXES = {".obj", ".gltf", ".glb", ".ply", ".stl", ".off", ".gii"}
+FREESURFER_NAMES = {"white", "pial", "sphere", "inflated", "orig", "smoothwm", "midthickness"}
 
 
-def equirectangular(S):
-    """Texture coordinates of sphere points, as `conformap sphere -o` writes them."""
-    u = (np.arctan2(S[:, 1], S[:, 0]) + math.pi) / (2 * math.pi)
-    v = (np.arcsin(np.clip(S[:, 2], -1.0, 1.0)) + math.pi / 2) / math.pi
-    return np.stack([u, v], axis=1)
+def json_number(x: float) -> str:
+    """A float as serde_json (ryu) writes it: the shortest round-trip digits, decimal for
+    exponents -5 < k <= 16, else `1.5e-7`; non-finite values as null."""
+    if not math.isfinite(x):
+        return "null"
+    sign = "-" if math.copysign(1.0, x) < 0 else ""
+    d = decimal.Decimal(repr(abs(x)))
+    if d == 0:
+        return sign + "0.0"
+    t = d.as_tuple()
+    digits, exp = list(t.digits), t.exponent
+    while len(digits) > 1 and digits[-1] == 0:
+        digits.pop()
+        exp += 1
+    s = "".join(map(str, digits))
+    kk = len(s) + exp  # the position of the decimal point
+    if exp >= 0 and kk <= 16:
+        return f"{sign}{s}{'0' * exp}.0"
+    if 0 < kk <= 16:
+        return f"{sign}{s[:kk]}.{s[kk:]}"
+    if -5 < kk <= 0:
+        return f"{sign}0.{'0' * -kk}{s}"
+    mantissa = s if len(s) == 1 else f"{s[0]}.{s[1:]}"
+    return f"{sign}{mantissa}e{kk - 1}"
 
 
-def outputs_of(path: pathlib.Path, out_dir: pathlib.Path, ext):
-    """batch's outputs of one input: OUT/<stem>.<ext> (ext: the input's) and OUT/<stem>.json."""
-    ext = (ext or path.suffix.lstrip(".")).lower()
-    ext = ext if ext in ("obj", "gltf", "glb") else "obj"
-    return out_dir / f"{path.stem}.{ext}", out_dir / f"{path.stem}.json"
+def json_line(value) -> str:
+    """`value` as compact, key-sorted JSON text, byte for byte as `conformap batch` writes
+    its lines (serde_json)."""
+    if isinstance(value, bool) or value is None:
+        return json.dumps(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return json_number(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, dict):
+        items = sorted(value.items())
+        return "{" + ",".join(f"{json_line(k)}:{json_line(v)}" for k, v in items) + "}"
+    return "[" + ",".join(json_line(v) for v in value) + "]"
 
 
-def map_one(path: str, out_dir: str, command: str, ext=None, skip_existing=False) -> dict:
-    """Maps one mesh and writes its outputs; never raises (a failure is a `failed` line)."""
-    p = pathlib.Path(path)
-    mesh_out, report_out = outputs_of(p, pathlib.Path(out_dir), ext)
-    outputs = [str(mesh_out), str(report_out)]
-    if skip_existing and mesh_out.exists() and report_out.exists():
-        return {"input": str(p), "status": "skipped", "outputs": outputs}
-    t0 = time.perf_counter()
-    try:
-        V, F = conformap.read_mesh(p)
-        read_ms = 1000.0 * (time.perf_counter() - t0)
-        if command == "disk":
-            uv, report = conformap.disk_map(V, F)
-            write = lambda: conformap.write_mesh(mesh_out, V, F, uv=(uv + 1.0) / 2.0)
-        elif command == "sphere":
-            S, report = conformap.sphere_map(V, F)
-            write = lambda: conformap.write_mesh(mesh_out, V, F, uv=equirectangular(S))
+def command_options(tokens):
+    """`--max-iter 50 --strict` → {"max_iter": "50", "strict": True} for batch_one."""
+    options, k = {}, 0
+    while k < len(tokens):
+        name = tokens[k]
+        if not name.startswith("--"):
+            raise SystemExit(f"error: the options after -- must be --name [value], got {name!r}")
+        key = name[2:].replace("-", "_")
+        if k + 1 < len(tokens) and not tokens[k + 1].startswith("--"):
+            options[key], k = tokens[k + 1], k + 2
         else:
-            uv, F_uv, report = conformap.global_map(V, F)
-            g = report["global"]
-            vt = (uv - np.array(g["uv_offset"])) * g["uv_scale"]
-            write = lambda: conformap.write_mesh(mesh_out, V, F, uv=vt, F_uv=F_uv)
-        t = time.perf_counter()
-        write()
-        # the report as the CLI writes it: the input's path; read, write and total timed here
-        report["input"]["path"] = str(p)
-        timings = report["timings_ms"]
-        timings.update(read=read_ms, write=1000.0 * (time.perf_counter() - t),
-                       total=1000.0 * (time.perf_counter() - t0))
-        report_out.write_text(json.dumps(report, indent=2))
-        return {
-            "input": str(p),
-            "status": "ok",
-            "command": report["command"],
-            "method": report["method"],
-            "outputs": outputs,
-            "converged": report["solver"]["converged"],
-            "metrics": report["metrics"],
-            "timings_ms": timings,
-            # the worker process's peak so far (tasks share it), as batch says with --jobs > 1
-            "memory": {**report["memory"], "peak_rss_scope": "process"},
-        }
-    except (conformap.ConformapError, conformap.NumericalError) as e:
-        message = str(e).splitlines()[0]
-        if message.startswith("<arrays>: "):  # the CLI names the file where we name arrays
-            message = f"{p}: {message.removeprefix('<arrays>: ')}"
-        return {
-            "input": str(p),
-            "status": "failed",
-            "exit_code": e.exit_code,
-            "exit_class": EXIT_CLASS[e.exit_code],
-            "error": message,
-            "hint": e.hint,
-            "time_ms": 1000.0 * (time.perf_counter() - t0),
-        }
-    except OSError as e:
-        return {"input": str(p), "status": "failed", "exit_code": 1, "exit_class": "bad input",
-                "error": f"cannot write the outputs of {p}: {e}", "hint": None,
-                "time_ms": 1000.0 * (time.perf_counter() - t0)}
+            options[key], k = True, k + 1
+    return options
 
 
-def run(paths, out_dir, command, workers, ext=None, skip_existing=False):
-    """Yields one line per mesh, in input order."""
-    kwargs = dict(out_dir=out_dir, command=command, ext=ext, skip_existing=skip_existing)
+def is_mesh(p: pathlib.Path) -> bool:
+    return p.suffix.lower() in MESH_SUFFIXES or p.suffix.lstrip(".") in FREESURFER_NAMES
+
+
+def expand(paths):
+    """The inputs: meshes as given, directories as their mesh files sorted by name."""
+    out = []
+    for p in paths:
+        p = pathlib.Path(p)
+        out += sorted(str(q) for q in p.iterdir() if is_mesh(q)) if p.is_dir() else [str(p)]
+    return out
+
+
+def run(paths, args, options):
+    """Yields each input's line (batch_one's dict), in input order."""
+    kwargs = dict(skip_existing=args.skip_existing, ext=args.ext, png=args.png,
+                  max_memory=args.max_memory, **options)
+    task = lambda p: conformap.batch_one(p, args.command, str(args.out_dir), **kwargs)
+    if args.scheduler is None and args.jobs == 1:
+        yield from map(task, paths)
+        return
     try:
         from dask.distributed import Client, LocalCluster
     except ImportError:
         from concurrent.futures import ThreadPoolExecutor
 
-        with ThreadPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(map_one, str(p), **kwargs) for p in paths]
-            for f in futures:
-                yield f.result()
+        with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            yield from pool.map(task, paths)
         return
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True) as cluster:
-        with Client(cluster) as client:
-            for f in client.map(map_one, [str(p) for p in paths], **kwargs):
-                yield f.result()
+    if args.scheduler is not None:
+        with Client(args.scheduler) as client:
+            yield from client.gather(client.map(task, paths, pure=False), asynchronous=False)
+        return
+    print(f"cohort: {len(paths)} inputs on a Dask LocalCluster of {args.jobs} worker processes",
+          file=sys.stderr)
+    with LocalCluster(n_workers=args.jobs, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        for future in client.map(task, paths, pure=False):
+            yield future.result()
 
 
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    cut = argv.index("--") if "--" in argv else len(argv)
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mesh_dir", type=pathlib.Path)
+    ap.add_argument("inputs", nargs="+", help="meshes, or directories of meshes")
+    ap.add_argument("--command", required=True,
+                    choices=["disk", "sphere", "global", "flatten", "atlas"])
     ap.add_argument("--out-dir", type=pathlib.Path, required=True)
-    ap.add_argument("--command", choices=["disk", "sphere", "global"], default="disk")
-    ap.add_argument("--workers", type=int, default=2, help="parallel maps (default 2: one per core here)")
-    ap.add_argument("--ext", choices=["obj", "gltf", "glb"], help="output format (default: the input's)")
-    ap.add_argument("--skip-existing", action="store_true", help="skip inputs whose outputs exist")
-    ap.add_argument("--report", type=pathlib.Path, help="also write the lines to this file")
-    args = ap.parse_args(argv)
-    paths = sorted(p for p in args.mesh_dir.iterdir() if p.suffix.lower() in MESH_SUFFIXES)
-    args.out_dir.mkdir(parents=True, exist_ok=True)
+    ap.add_argument("--jobs", type=int, default=1, help="inputs at once (default 1)")
+    ap.add_argument("--skip-existing", action="store_true")
+    ap.add_argument("--ext", help="output mesh format (default: the input's)")
+    ap.add_argument("--png", action="store_true")
+    ap.add_argument("--max-memory", type=int, help="bytes, every run's limit")
+    ap.add_argument("--report", type=pathlib.Path, help="also write the lines here")
+    ap.add_argument("--scheduler", help="address of a running Dask scheduler")
+    args = ap.parse_args(argv[:cut])
+    options = command_options(argv[cut + 1:])
+    paths = expand(args.inputs)
+    args.jobs = max(1, min(args.jobs, len(paths)))
+    t0 = time.perf_counter()
     sink = args.report.open("w") if args.report else None
     counts = {"ok": 0, "failed": 0, "skipped": 0}
-    t0 = time.perf_counter()
+    peak = 0
 
     def emit(line):
-        text = json.dumps(line)
+        text = json_line(line)
         print(text, flush=True)
         if sink:
             sink.write(text + "\n")
+            sink.flush()
 
-    workers = max(1, min(args.workers, len(paths)))
-    for line in run(paths, str(args.out_dir), args.command, workers, args.ext, args.skip_existing):
-        counts[line["status"]] += 1
-        emit(line)
+    try:
+        for line in run(paths, args, options):
+            counts[line["status"]] += 1
+            peak = max(peak, line.get("memory", {}).get("peak_rss_bytes") or 0)
+            emit(line)
+    except conformap.ConformapError as e:  # what batch refuses before running anything
+        print(f"error: {e}", file=sys.stderr)
+        return getattr(e, "exit_code", 2)  # lost when pickled back from a Dask worker
     exit_code = 4 if counts["failed"] else 0
+    own = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     emit({"summary": {
         "command": args.command,
         "inputs": len(paths),
         **counts,
-        "jobs": workers,
+        "jobs": args.jobs,
         "exit_code": exit_code,
-        # this process's peak (with Dask, the workers' own are in each line's "memory")
-        "peak_rss_bytes": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+        "peak_rss_bytes": max(own, peak),
         "total_ms": 1000.0 * (time.perf_counter() - t0),
     }})
     if sink:

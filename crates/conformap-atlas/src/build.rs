@@ -8,8 +8,8 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::chart::{
-    chart_component, chart_quality, flipped_corner_faces, split_overlapping, Chart, ChartQuality,
-    Piece,
+    chart_component, chart_quality, detach_folded, flipped_corner_faces, split_overlapping, Chart,
+    ChartQuality, Piece,
 };
 use crate::cones::ConeOptions;
 use crate::error::AtlasError;
@@ -135,7 +135,10 @@ pub fn build_atlas(
             original: chart.cut.original.clone(),
             uv: chart.uv.clone(),
         };
-        let pieces = split_overlapping(whole, 0)?;
+        let mut pieces = Vec::new();
+        for piece in detach_folded(whole)? {
+            pieces.extend(split_overlapping(piece, 0)?);
+        }
         charts.push(ComponentChart {
             faces: face_ids,
             vertices,

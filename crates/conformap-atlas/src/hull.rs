@@ -83,6 +83,46 @@ pub fn min_area_rect(points: &[[f64; 2]]) -> BoundingRect {
 }
 
 /// The axis-aligned bounds of `points` turned by `angle`.
+/// Angles sampled over a quarter turn by [`min_square_rect`] before its refinement.
+const SQUARE_SAMPLES: usize = 128;
+
+/// The bounding rectangle of `points` whose longer side is shortest over all rotations:
+/// the smallest square that holds them, which bounds the scale of a chart packed alone.
+/// Sampled at [`SQUARE_SAMPLES`] angles over a quarter turn, then refined by golden-section
+/// search around the best sample (the longer side is a maximum of sinusoids: piecewise
+/// smooth, one minimum per sampling interval at this density).
+pub fn min_square_rect(points: &[[f64; 2]]) -> BoundingRect {
+    let hull = convex_hull(points);
+    let side = |a: f64| {
+        let r = bounds(&hull, a);
+        r.size[0].max(r.size[1])
+    };
+    let step = std::f64::consts::FRAC_PI_2 / SQUARE_SAMPLES as f64;
+    let mut best = 0.0;
+    let mut best_side = side(0.0);
+    for k in 1..SQUARE_SAMPLES {
+        let a = k as f64 * step;
+        let s = side(a);
+        if s < best_side {
+            (best, best_side) = (a, s);
+        }
+    }
+    // golden section on [best − step, best + step]
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (best - step, best + step);
+    for _ in 0..40 {
+        let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if side(x1) < side(x2) {
+            hi = x2;
+        } else {
+            lo = x1;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    let angle = if side(a) < best_side { a } else { best };
+    bounds(&hull, angle)
+}
+
 fn bounds(points: &[[f64; 2]], angle: f64) -> BoundingRect {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for &p in points {
@@ -125,6 +165,25 @@ mod tests {
             assert!(q[0] >= r.min[0] - 1e-12 && q[0] <= r.min[0] + r.size[0] + 1e-12);
             assert!(q[1] >= r.min[1] - 1e-12 && q[1] <= r.min[1] + r.size[1] + 1e-12);
         }
+    }
+
+    #[test]
+    fn a_square_is_held_by_itself_and_a_thin_diamond_by_its_diagonal() {
+        let square: Vec<[f64; 2]> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+            .iter()
+            .map(|&p| rotate(p, 0.3))
+            .collect();
+        let r = min_square_rect(&square);
+        assert!((r.size[0].max(r.size[1]) - 1.0).abs() < 1e-9, "{r:?}");
+        // a long thin diamond (3 × 0.4) fits a square of side 3/√2 ≈ 2.12 on its
+        // diagonal; lying in its smallest-area rectangle it needs 3
+        let diamond = [[0.0, 0.0], [1.5, 0.2], [3.0, 0.0], [1.5, -0.2]];
+        let r = min_square_rect(&diamond);
+        let area = min_area_rect(&diamond);
+        assert!(
+            r.size[0].max(r.size[1]) < 0.75 * area.size[0],
+            "{r:?} {area:?}"
+        );
     }
 
     #[test]

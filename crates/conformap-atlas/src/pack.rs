@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::AtlasError;
-use crate::hull::{min_area_rect, rotate, BoundingRect};
+use crate::hull::{min_area_rect, min_square_rect, rotate, BoundingRect};
 use crate::skyline;
 
 /// How charts are packed. `Default` is [`PackOptions::DEFAULT`].
@@ -117,17 +117,77 @@ impl Packing {
 /// alone overflow the square.
 pub fn pack_charts(charts: &[Vec<[f64; 2]>], options: &PackOptions) -> Result<Packing, AtlasError> {
     check(charts, options)?;
-    let n = options.resolution as f64;
-    let m = options.margin_texels;
-    let rects: Vec<BoundingRect> = charts.iter().map(|c| min_area_rect(c)).collect();
-    // tallest first (the skyline's best order), ties by width, then by index: deterministic
-    let mut order: Vec<usize> = (0..charts.len()).collect();
+    let too_many = AtlasError::TooManyCharts {
+        charts: charts.len(),
+        margin: options.margin_texels,
+        resolution: options.resolution,
+    };
+    // three ways to turn the charts (smallest area, smallest square, mixed) and four orders
+    // for the skyline: the largest common scale of the twelve is kept
+    let area_rects: Vec<BoundingRect> = charts.iter().map(|c| min_area_rect(c)).collect();
+    let square_rects: Vec<BoundingRect> = charts.iter().map(|c| min_square_rect(c)).collect();
+    // mixed: the charts that could fill a quarter of the square alone turned to their
+    // smallest square, the others to their smallest area
+    let total: f64 = area_rects.iter().map(|r| r.size[0] * r.size[1]).sum();
+    let mixed: Vec<BoundingRect> = area_rects
+        .iter()
+        .zip(&square_rects)
+        .map(|(a, q)| {
+            if a.size[0] * a.size[1] > 0.25 * total {
+                *q
+            } else {
+                *a
+            }
+        })
+        .collect();
+    let mut best: Option<(Layout, Vec<usize>, &[BoundingRect])> = None;
+    for rects in [&area_rects[..], &square_rects[..], &mixed[..]] {
+        for key in ORDERS {
+            let order = order_by(rects, key);
+            let Some(layout) = largest_scale(rects, &order, options) else {
+                continue;
+            };
+            if best.as_ref().is_none_or(|b| layout.0 > b.0 .0) {
+                best = Some((layout, order, rects));
+            }
+        }
+    }
+    let ((s, spots, height), order, rects) = best.ok_or(too_many)?;
+    Ok(placements(
+        charts, rects, &order, &spots, s, height, options,
+    ))
+}
+
+/// A packing at one scale: the scale, the spots (in packing order) and the height used.
+type Layout = (f64, Vec<skyline::Spot>, f64);
+
+/// Orders the skyline packer is tried with: tallest first, largest area first, longest
+/// side first, widest first (ties by the next size, then by index: deterministic).
+const ORDERS: [fn(&BoundingRect) -> [f64; 2]; 4] = [
+    |r| [r.size[1], r.size[0]],
+    |r| [r.size[0] * r.size[1], r.size[1]],
+    |r| [r.size[0].max(r.size[1]), r.size[0].min(r.size[1])],
+    |r| [r.size[0], r.size[1]],
+];
+
+fn order_by(rects: &[BoundingRect], key: fn(&BoundingRect) -> [f64; 2]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..rects.len()).collect();
     order.sort_by(|&a, &b| {
-        rects[b].size[1]
-            .total_cmp(&rects[a].size[1])
-            .then(rects[b].size[0].total_cmp(&rects[a].size[0]))
+        let (ka, kb) = (key(&rects[a]), key(&rects[b]));
+        kb[0]
+            .total_cmp(&ka[0])
+            .then(kb[1].total_cmp(&ka[1]))
             .then(a.cmp(&b))
     });
+    order
+}
+
+/// The largest scale (bisection) at which the skyline packer fits `rects` in `order` with
+/// their margins in the square, its spots and the height used; `None` when the margins
+/// alone overflow it.
+fn largest_scale(rects: &[BoundingRect], order: &[usize], options: &PackOptions) -> Option<Layout> {
+    let n = options.resolution as f64;
+    let m = options.margin_texels;
     let try_scale = |s: f64| {
         let sizes: Vec<[f64; 2]> = order
             .iter()
@@ -135,13 +195,7 @@ pub fn pack_charts(charts: &[Vec<[f64; 2]>], options: &PackOptions) -> Result<Pa
             .collect();
         skyline::pack(&sizes, n, options.turn).filter(|(_, h)| *h <= n * (1.0 + 1e-12))
     };
-    if try_scale(0.0).is_none() {
-        return Err(AtlasError::TooManyCharts {
-            charts: charts.len(),
-            margin: m,
-            resolution: options.resolution,
-        });
-    }
+    try_scale(0.0)?;
     // the rectangles' total area bounds the scale from above
     let area: f64 = rects.iter().map(|r| r.size[0] * r.size[1]).sum();
     let widest = rects.iter().map(|r| r.size[0]).fold(0.0, f64::max);
@@ -161,14 +215,8 @@ pub fn pack_charts(charts: &[Vec<[f64; 2]>], options: &PackOptions) -> Result<Pa
             hi = mid;
         }
     }
-    let (spots, height) = try_scale(lo).ok_or(AtlasError::TooManyCharts {
-        charts: charts.len(),
-        margin: m,
-        resolution: options.resolution,
-    })?;
-    Ok(placements(
-        charts, &rects, &order, &spots, lo, height, options,
-    ))
+    let (spots, height) = try_scale(lo)?;
+    Some((lo, spots, height))
 }
 
 /// Turns the packer's spots into chart placements in texture units.

@@ -23,10 +23,13 @@ fn eight_cones_on_spot_spread_less_than_bff() {
         "defects sum to {sum}"
     );
     for c in &set.cones {
-        assert!(c.angle_deg() > 0.0 && c.angle_deg() < 720.0, "{c:?}");
+        assert!(
+            c.angle_deg() >= 90.0 - 1e-9 && c.angle_deg() <= 720.0 + 1e-9,
+            "{c:?}"
+        );
     }
-    // BFF's tool: 1.01; measured 0.835 here
-    assert!(set.area_spread < 0.86, "spread {}", set.area_spread);
+    // BFF's tool: 1.01; measured 0.825 here (0.835 before the local descent)
+    assert!(set.area_spread < 0.83, "spread {}", set.area_spread);
     assert!(set.area_spread <= set.greedy_spread);
     // the cone metric really has those curvatures: L u = K̃ − K away from the pinned vertex
     let u2 = metric.scale_factor(

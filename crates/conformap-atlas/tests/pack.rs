@@ -109,3 +109,24 @@ fn bad_options_and_points_are_refused() {
         Err(AtlasError::TooManyCharts { .. })
     ));
 }
+
+/// One long thin chart stands on its diagonal: its smallest square (side 3/√2 ≈ 2.12) and
+/// not its smallest-area rectangle (3 × 0.4, side 3) sets the scale, ×2 in efficiency.
+#[test]
+fn a_lone_thin_chart_is_turned_to_its_smallest_square() {
+    let diamond = vec![vec![[0.0, 0.0], [1.5, 0.2], [3.0, 0.0], [1.5, -0.2]]];
+    let packing = pack_charts(&diamond, &PackOptions::default()).expect("packs");
+    let area = 0.6;
+    // margins take 2 texels of 1024
+    let side = 3.0 / 2f64.sqrt() * 1024.0 / 1022.0;
+    assert!(
+        packing.efficiency >= area / (side * side) * (1.0 - 1e-6),
+        "{}",
+        packing.efficiency
+    );
+    assert!(
+        packing.efficiency > 1.9 * area / 9.0,
+        "{}",
+        packing.efficiency
+    );
+}

@@ -57,16 +57,21 @@ impl InputArgs {
 #[derive(Debug, Clone, Args)]
 pub struct OutputArgs {
     /// Output mesh: the input's 3D positions with the map as texture coordinates (.obj,
-    /// .gltf, .glb; the command's help says how the map becomes texture coordinates).
+    /// .gltf, .glb; "Texture coordinates" at the end of this help says how).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Also write the raw map as a mesh: (u, v, 0) for planar maps, the unit-sphere points
-    /// for sphere maps.
+    /// for sphere maps (.surf.gii and FreeSurfer surfaces: at radius 100, keeping the
+    /// coordinate system or volume geometry of an input of the same format).
     #[arg(long)]
     pub flat: Option<PathBuf>,
     /// Write a JSON report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Also write the map's quality at every vertex (angle_distortion_deg,
+    /// area_log_ratio) as a GIfTI data file that loads as an overlay on the input surface.
+    #[arg(long, value_name = "FILE.shape.gii")]
+    pub quality_overlay: Option<PathBuf>,
     /// Also write pictures of the result: PREFIX_surface.png (the surface with a
     /// checkerboard through the map) and PREFIX_map.png (the map coloured by angle
     /// distortion), 1024 × 1024.
@@ -84,6 +89,7 @@ impl OutputArgs {
         let mut options = OutputOptions::new(&self.output).with_strict(self.strict);
         options.flat = self.flat.clone();
         options.report = self.report.clone();
+        options.quality = self.quality_overlay.clone();
         options.png = self.png.clone();
         options
     }

@@ -25,6 +25,29 @@ pub struct Cli {
     pub quiet: bool,
 }
 
+impl Cli {
+    /// The parser: clap's, with a negative number after a flag taken as its value, so that
+    /// `--max-iter -1` is refused by that flag's own check (exit 2, naming it) rather than
+    /// with clap's tip to write `-- -1`, which does not work for a flag's value.
+    pub fn command_line() -> clap::Command {
+        <Self as clap::CommandFactory>::command()
+            .mut_subcommands(|c| c.allow_negative_numbers(true))
+    }
+
+    /// Parses `argv` with [`Cli::command_line`].
+    ///
+    /// # Errors
+    /// clap's usage error (printed by `clap::Error::exit`, exit 2).
+    pub fn try_parse_args<I, T>(argv: I) -> Result<Self, clap::Error>
+    where
+        I: IntoIterator<Item = T>,
+        T: Into<OsString> + Clone,
+    {
+        let mut matches = Self::command_line().try_get_matches_from(argv)?;
+        <Self as clap::FromArgMatches>::from_arg_matches_mut(&mut matches)
+    }
+}
+
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
@@ -32,7 +55,7 @@ pub enum Command {
     Info(InfoArgs),
     /// Conformal map of a disk-like mesh (one boundary loop) onto the unit disk.
     Disk(DiskArgs),
-    /// Judge a planar map of a mesh (ours or another tool's).
+    /// Judge a map of a mesh (ours or another tool's): planar, seamed, or on the sphere.
     Metrics(MetricsArgs),
     /// Boundary first flattening of a mesh with boundary: a free boundary (lengths kept,
     /// the least area distortion), a rectangle or polygon with exact corners, a circle, or
@@ -92,7 +115,7 @@ pub fn batch_job(args: &BatchArgs) -> Result<BatchJob, Failure> {
     let mut argv: Vec<OsString> = vec!["conformap".into(), name.into(), "MESH".into()];
     argv.extend(["-o".into(), "OUT".into()]);
     argv.extend(args.options.iter().map(Into::into));
-    let cli = Cli::try_parse_from(&argv).map_err(|e| {
+    let cli = Cli::try_parse_args(&argv).map_err(|e| {
         Failure::Usage(format!(
             "the options after -- do not fit `conformap {name}`: {}",
             e.to_string()

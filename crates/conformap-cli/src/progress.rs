@@ -146,6 +146,10 @@ impl Watcher for BarWatcher {
         self.0.set_message(name.to_string());
     }
 
+    fn notice(&self, message: &str) {
+        self.0.suspend(|| eprintln!("{message}"));
+    }
+
     fn suspend(&self, print: &mut dyn FnMut()) {
         self.0.suspend(print);
     }

@@ -205,9 +205,15 @@ fn genus_zero_and_bad_options_are_refused_with_the_right_command_named() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("conformap sphere"), "{}", stderr(&o));
     let eight = fixture("eightsim.obj");
+    // a bad option (usage, exit 2), with the number of forms of this mesh (genus 2: 4)
     let o = conformap(&["global", s(&eight), "-o", s(&out), "--form", "4"]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("form"), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--form 4: "), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(", 4 on this mesh (0..=3)"),
+        "{}",
+        stderr(&o)
+    );
     let o = conformap(&["global", s(&eight), "-o", s(&out), "--root", "100000"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(!out.exists());

@@ -133,7 +133,8 @@ fn every_defect_class_names_element_line_and_what_to_do() {
             &[
                 "two_components.obj: a disk map needs a disk",
                 "2 separate components",
-                "rerun with --repair to keep the largest component",
+                "`conformap atlas` charts all 2 components",
+                "rerun with --repair, which would do this: largest of 2 components kept",
             ],
         ),
         (
@@ -160,13 +161,17 @@ fn every_defect_class_names_element_line_and_what_to_do() {
         &[],
         &[
             "genus 1 with 1 boundary loop",
-            "cut the surface along its handle loops",
+            "hint: `conformap global` maps a surface of genus 1 with boundary (by double \
+             covering); `conformap atlas` charts it flat through cuts",
         ],
     );
     refused(
         s(&fixture("spot.obj")),
         &[],
-        &["closed genus-0", "cut it open"],
+        &[
+            "closed genus-0",
+            "hint: `conformap sphere` maps a closed genus-0 surface onto the unit sphere",
+        ],
     );
     // several boundary loops are mapped, not refused: the disk with circular holes
     // (issue 5; tests/cli.rs, several_loops_map_onto_a_disk_with_circular_holes)

@@ -304,3 +304,35 @@ fn sphere_maps_are_written_at_radius_100() {
     write_flat(&out, &p, &f).unwrap();
     assert_eq!(read_mesh(&out).unwrap().mesh.positions(), &p);
 }
+
+/// A GIfTI surface whose arrays spell their encoding and byte order by gifticlib's code
+/// names (`GIFTI_ENCODING_B64BIN`, `GIFTI_ENDIAN_BIG`), as nibabel's own test file
+/// `base64bin.gii` does; nibabel reads such files, so must we.
+#[test]
+fn gifti_encodings_by_their_code_names() {
+    use base64::Engine as _;
+    let b64 = |bytes: Vec<u8>| base64::engine::general_purpose::STANDARD.encode(bytes);
+    let points: [f32; 12] = [0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
+    let array = |intent: &str, ty: &str, dim0: usize, encoding: &str, endian: &str, data: &str| {
+        format!(
+            "<DataArray Intent=\"{intent}\" DataType=\"{ty}\" ArrayIndexingOrder=\"RowMajorOrder\" \
+             Dimensionality=\"2\" Dim0=\"{dim0}\" Dim1=\"3\" Encoding=\"{encoding}\" \
+             Endian=\"{endian}\" ExternalFileName=\"\" ExternalFileOffset=\"\">\
+             <MetaData/><Data>{data}</Data></DataArray>"
+        )
+    };
+    let big: Vec<u8> = points.iter().flat_map(|x| x.to_be_bytes()).collect();
+    let text = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<GIFTI Version=\"1.0\" NumberOfDataArrays=\"2\">\
+         <MetaData/>{}{}</GIFTI>\n",
+        array("NIFTI_INTENT_POINTSET", "NIFTI_TYPE_FLOAT32", 4, "GIFTI_ENCODING_B64BIN",
+              "GIFTI_ENDIAN_BIG", &b64(big)),
+        array("NIFTI_INTENT_TRIANGLE", "NIFTI_TYPE_INT32", 2, "GIFTI_ENCODING_ASCII",
+              "GIFTI_ENDIAN_LITTLE", "0 1 2 0 2 3"),
+    );
+    let mesh = read_mesh_from_bytes(text.as_bytes(), Format::Gifti)
+        .unwrap()
+        .mesh;
+    assert_eq!(mesh.positions()[2], [1.0, 1.0, 0.0]);
+    assert_eq!(mesh.faces(), &[[0, 1, 2], [0, 2, 3]]);
+}

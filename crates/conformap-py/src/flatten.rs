@@ -65,20 +65,20 @@ fn pairs(values: &Bound<'_, PyAny>) -> PyResult<Vec<(u32, f64)>> {
 
 /// Boundary first flattening, as `conformap flatten`. See `conformap.pyi`.
 #[pyfunction]
-#[pyo3(signature = (v, f, boundary = "free", values = None, *, corners = None, aspect = None,
+#[pyo3(signature = (V, F, boundary = "free", values = None, *, corners = None, aspect = None,
     interior = "harmonic", strict = false, max_memory = None))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn flatten<'py>(
     py: Python<'py>,
-    v: &Bound<'py, PyAny>,
-    f: &Bound<'py, PyAny>,
+    V: &Bound<'py, PyAny>,
+    F: &Bound<'py, PyAny>,
     boundary: &str,
     values: Option<&Bound<'py, PyAny>>,
     corners: Option<[u32; 4]>,
     aspect: Option<f64>,
     interior: &str,
     strict: bool,
-    max_memory: Option<u64>,
+    max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
     let values = values.map(pairs).transpose()?;
     let (spec, text) = boundary_spec(boundary, values.as_deref())?;
@@ -91,7 +91,8 @@ pub fn flatten<'py>(
     job.corners = corners;
     job.aspect = aspect;
     job.boundary_text = text;
-    let input = mesh_input(v, f)?;
+    let max_memory = crate::options::max_memory(max_memory)?;
+    let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     let n = input.mesh.num_vertices();
     let uv: Vec<[f64; 2]> = solved.flat.0[..n.min(solved.flat.0.len())]

@@ -16,6 +16,7 @@ use crate::arrays::{faces_array, mesh_input, to_array, MEMORY_PATH};
 use crate::errors::{bad_input, to_py, usage};
 use crate::maps::{choice, report_dict, run};
 use crate::mobius::region_faces;
+use crate::options::{self, opt_count};
 
 /// Vertex indices from a Python sequence of integers; `name` names it in errors.
 fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
@@ -42,24 +43,25 @@ fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
 ///
 /// Example: `uv, F_uv, report = conformap.global_map(V, F, "zeros", zeros=[10])`
 #[pyfunction]
-#[pyo3(signature = (v, f, objective = "uniform", *, form = None, region = None, zeros = None,
-    starts = None, conjugate = "nearest", root = None, return_mesh = false, strict = false,
-    max_memory = None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (V, F, objective = "uniform", *, form = None, region = None, zeros = None,
+    starts = None, conjugate = "nearest", root = None, topology_opt = false,
+    return_mesh = false, strict = false, max_memory = None))]
+#[allow(clippy::too_many_arguments, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn global_map<'py>(
     py: Python<'py>,
-    v: &Bound<'py, PyAny>,
-    f: &Bound<'py, PyAny>,
+    V: &Bound<'py, PyAny>,
+    F: &Bound<'py, PyAny>,
     objective: &str,
-    form: Option<usize>,
+    form: Option<&Bound<'py, PyAny>>,
     region: Option<&Bound<'py, PyAny>>,
     zeros: Option<&Bound<'py, PyAny>>,
-    starts: Option<usize>,
+    starts: Option<&Bound<'py, PyAny>>,
     conjugate: &str,
-    root: Option<usize>,
+    root: Option<&Bound<'py, PyAny>>,
+    topology_opt: bool,
     return_mesh: bool,
     strict: bool,
-    max_memory: Option<u64>,
+    max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let objective_value = choice::<FormObjective>("objective", objective)?;
     let regional = matches!(
@@ -90,30 +92,34 @@ pub fn global_map<'py>(
     }
     let conjugate = choice::<Conjugate>("conjugate", conjugate)?;
     let zeros = zeros.map(|z| vertex_list(z, "zeros")).transpose()?;
-    let input = mesh_input(v, f)?;
+    let max_memory = options::max_memory(max_memory)?;
+    let input = mesh_input(V, F)?;
     let region = region
         .map(|r| region_faces(r, input.mesh.num_faces()))
         .transpose()?;
-    // topological optimization (`--topology-opt`) is not bound here yet
     let mut job = GlobalJob::new(
         InputOptions::new(MEMORY_PATH),
         OutputOptions::new(MEMORY_PATH).with_strict(strict),
     )
-    .with_objective(objective_value);
-    job.form = form;
+    .with_objective(objective_value)
+    .with_topology_opt(topology_opt);
+    job.form = opt_count(form, "form")?;
     job.conjugate = conjugate;
     job.zeros = zeros;
-    job.starts = starts;
-    job.root = root;
+    job.starts = opt_count(starts, "starts")?;
+    job.root = opt_count(root, "root")?;
     job.region_faces = region;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;
+    // a per-vertex layout (`topology_opt` on a genus-0 surface): `F_uv` is `F`
+    let per_vertex_faces = input.mesh.faces().to_vec();
     let uv: Vec<[f64; 2]> = solved.flat.0.iter().map(|p| [p[0], p[1]]).collect();
+    // `topology_opt` on a genus-0 surface may return the starting sphere map: unit vectors
+    let sphere = matches!(solved.uv, TexCoords::PerVertex(_))
+        && solved.flat.0.iter().any(|p| p[2].abs() > 0.0);
     let (laid_out, tex_faces) = match &solved.uv {
         TexCoords::PerCorner(c) => (&input.mesh, &c.faces),
         TexCoords::Refined { mesh, uv } => (mesh, &uv.faces),
-        TexCoords::PerVertex(_) => {
-            return Err(bad_input("global: a per-vertex layout was not expected"))
-        }
+        TexCoords::PerVertex(_) => (&input.mesh, &per_vertex_faces),
     };
     if !return_mesh && laid_out.num_faces() != input.mesh.num_faces() {
         return Err(to_py(Failure::BadInput(
@@ -126,8 +132,13 @@ pub fn global_map<'py>(
             Some("pass return_mesh=True to get that mesh with the layout".to_string()),
         )));
     }
+    let layout = if sphere {
+        to_array(py, &solved.flat.0)?
+    } else {
+        to_array(py, &uv)?
+    };
     let mut items: Vec<Bound<'py, PyAny>> = vec![
-        to_array(py, &uv)?.into_any(),
+        layout.into_any(),
         faces_array(py, tex_faces)?.into_any(),
         report_dict(py, &report)?,
     ];

@@ -16,10 +16,13 @@
 //! - [`mobius`]: `mobius` (the map and the region in memory).
 //! - [`global`]: `global_map` (a seamed layout: `uv`, `F_uv`).
 //! - [`morph`]: `morph` (frames of a morph through key surfaces).
-//! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`.
+//! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`, `repair`.
+//! - [`options`]: keyword arguments checked as the CLI's parser checks its flags.
+//! - [`batch`]: `batch_one` (one input of `conformap batch`, for cohorts on a cluster).
 
 pub mod arrays;
 pub mod atlas;
+pub mod batch;
 pub mod errors;
 pub mod flatten;
 pub mod global;
@@ -27,6 +30,8 @@ pub mod maps;
 pub mod meshes;
 pub mod mobius;
 pub mod morph;
+pub mod options;
+pub mod sphere_uv;
 
 use pyo3::prelude::*;
 
@@ -39,6 +44,7 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NumericalError", py.get_type::<errors::NumericalError>())?;
     m.add_function(wrap_pyfunction!(maps::disk_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::sphere_map, m)?)?;
+    m.add_function(wrap_pyfunction!(sphere_uv::sphere_uv, m)?)?;
     m.add_function(wrap_pyfunction!(flatten::flatten, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::atlas, m)?)?;
     m.add_function(wrap_pyfunction!(mobius::mobius, m)?)?;
@@ -48,5 +54,7 @@ fn conformap_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(meshes::metrics, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(meshes::write_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(meshes::repair, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_one, m)?)?;
     Ok(())
 }

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 use crate::arrays::{mesh_input, to_array, to_py_json, MEMORY_PATH};
 use crate::errors::{bad_input, to_py, usage};
+use crate::options::{self, opt_count};
 
 /// A value of a job's option enum (`method`, `ordering`, `mobius`) by its name.
 pub(crate) fn choice<T: Choice>(name: &str, value: &str) -> PyResult<T> {
@@ -51,33 +52,34 @@ pub(crate) fn flat_rows(solved: &Solved, n: usize) -> &[[f64; 3]] {
 /// Conformal map of a disk-like mesh onto the unit disk (several boundary loops: the unit
 /// disk with circular holes), as `conformap disk`. See `conformap.pyi`.
 #[pyfunction]
-#[pyo3(signature = (v, f, method = "ccem-qn", *, outer = None, max_iter = None, tol = None,
+#[pyo3(signature = (V, F, method = "ccem-qn", *, outer = None, max_iter = None, tol = None,
     keep_folds = false, ordering = "auto", strict = false, max_memory = None))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, non_snake_case)] // `V`, `F` as the stubs (and libigl) spell them
 pub fn disk_map<'py>(
     py: Python<'py>,
-    v: &Bound<'py, PyAny>,
-    f: &Bound<'py, PyAny>,
+    V: &Bound<'py, PyAny>,
+    F: &Bound<'py, PyAny>,
     method: &str,
-    outer: Option<usize>,
-    max_iter: Option<usize>,
+    outer: Option<&Bound<'py, PyAny>>,
+    max_iter: Option<&Bound<'py, PyAny>>,
     tol: Option<f64>,
     keep_folds: bool,
     ordering: &str,
     strict: bool,
-    max_memory: Option<u64>,
+    max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
     let mut args = DiskJob::new(
         InputOptions::new(MEMORY_PATH),
         OutputOptions::new(MEMORY_PATH),
     )
     .with_method(choice::<Method>("method", method)?)
-    .with_max_iter(max_iter)
+    .with_max_iter(opt_count(max_iter, "max_iter")?)
     .with_tol(tol);
     args.ordering = choice::<FactorOrder>("ordering", ordering)?;
-    args.outer = outer;
+    args.outer = opt_count(outer, "outer")?;
     args.keep_folds = keep_folds;
-    let input = mesh_input(v, f)?;
+    let max_memory = options::max_memory(max_memory)?;
+    let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &args, &input, max_memory, strict)?;
     let uv: Vec<[f64; 2]> = flat_rows(&solved, input.mesh.num_vertices())
         .iter()
@@ -89,21 +91,23 @@ pub fn disk_map<'py>(
 /// Conformal map of a closed genus-0 mesh onto the unit sphere, as `conformap sphere`.
 /// See `conformap.pyi`.
 #[pyfunction]
-#[pyo3(signature = (v, f, mobius = "none", *, strict = false, max_memory = None))]
+#[pyo3(signature = (V, F, mobius = "none", *, strict = false, max_memory = None))]
+#[allow(non_snake_case)] // `V`, `F` as the stubs (and libigl) spell them
 pub fn sphere_map<'py>(
     py: Python<'py>,
-    v: &Bound<'py, PyAny>,
-    f: &Bound<'py, PyAny>,
+    V: &Bound<'py, PyAny>,
+    F: &Bound<'py, PyAny>,
     mobius: &str,
     strict: bool,
-    max_memory: Option<u64>,
+    max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
     let args = SphereJob::new(
         InputOptions::new(MEMORY_PATH),
         OutputOptions::new(MEMORY_PATH),
     )
     .with_mobius(choice::<SphereMobius>("mobius", mobius)?);
-    let input = mesh_input(v, f)?;
+    let max_memory = options::max_memory(max_memory)?;
+    let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &args, &input, max_memory, strict)?;
     let points = flat_rows(&solved, input.mesh.num_vertices());
     Ok((to_array(py, points)?, report_dict(py, &report)?))

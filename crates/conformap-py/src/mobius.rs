@@ -6,7 +6,6 @@
 use std::path::PathBuf;
 
 use conformap::failure::Failure;
-use conformap::jobs::mobius::DEFAULT_MAX_AREA_SCALE;
 use conformap::jobs::mobius::{Domain, MobiusJob, Objective};
 use conformap::jobs::param::{on_unit_sphere, region_face, MapFile, UNIT_SPHERE_TOL};
 use conformap::pipeline::{InputOptions, OutputOptions};
@@ -103,20 +102,22 @@ fn param_map(param: &Bound<'_, PyAny>, domain: Domain, n: usize) -> PyResult<Map
 /// Example: `moved, report = conformap.mobius(V, F, uv, objective="emphasize",
 /// region=range(100))`
 #[pyfunction]
-#[pyo3(signature = (v, f, param, domain = "disk", objective = "uniform", region = None, *,
-    max_area_scale = DEFAULT_MAX_AREA_SCALE, strict = false, max_memory = None))]
-#[allow(clippy::too_many_arguments)]
+// the default is written out (not DEFAULT_MAX_AREA_SCALE) so that `help()` shows it; a
+// test holds the two equal
+#[pyo3(signature = (V, F, param, domain = "disk", objective = "uniform", region = None, *,
+    max_area_scale = 10.0, strict = false, max_memory = None))]
+#[allow(clippy::too_many_arguments, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn mobius<'py>(
     py: Python<'py>,
-    v: &Bound<'py, PyAny>,
-    f: &Bound<'py, PyAny>,
+    V: &Bound<'py, PyAny>,
+    F: &Bound<'py, PyAny>,
     param: &Bound<'py, PyAny>,
     domain: &str,
     objective: &str,
     region: Option<&Bound<'py, PyAny>>,
     max_area_scale: f64,
     strict: bool,
-    max_memory: Option<u64>,
+    max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyAny>)> {
     let domain = choice::<Domain>("domain", domain)?;
     let objective_value = choice::<Objective>("objective", objective)?;
@@ -138,7 +139,8 @@ pub fn mobius<'py>(
             "max_area_scale must be a finite number > 1, got {max_area_scale}"
         )));
     }
-    let input = mesh_input(v, f)?;
+    let max_memory = crate::options::max_memory(max_memory)?;
+    let input = mesh_input(V, F)?;
     let n = input.mesh.num_vertices();
     let param = param_map(param, domain, n)?;
     let region = region
@@ -164,4 +166,18 @@ pub fn mobius<'py>(
         Domain::Sphere => to_array(py, moved)?,
     };
     Ok((out, report_dict(py, &report)?))
+}
+
+#[cfg(test)]
+mod tests {
+    /// The default written in `mobius`'s signature is the CLI's.
+    #[test]
+    fn max_area_scale_default_is_the_cli_s() {
+        let written = 10.0_f64;
+        let cli = conformap::jobs::mobius::DEFAULT_MAX_AREA_SCALE;
+        assert!(
+            (written - cli).abs() <= f64::EPSILON * cli,
+            "{written} vs {cli}"
+        );
+    }
 }

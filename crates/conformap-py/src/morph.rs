@@ -14,8 +14,8 @@ use conformap_morph::{Landmarks, Surface};
 use numpy::{PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 
-use crate::arrays::{faces_array, mesh_input, to_py_json};
-use crate::errors::{bad_input, in_place, to_py, usage};
+use crate::arrays::{faces_array, mesh_input_at, to_py_json};
+use crate::errors::{bad_input, to_py, usage};
 
 /// The name of surface `k` in reports and errors.
 fn surface_name(k: usize) -> PathBuf {
@@ -28,8 +28,9 @@ fn landmarks_name(k: usize) -> PathBuf {
 }
 
 /// Landmarks from a sequence of vertex indices, named by position (`"0"`, `"1"`, …), or
-/// from a mapping `name -> vertex` (in its order).
-fn landmarks(obj: &Bound<'_, PyAny>, k: usize) -> PyResult<Landmarks> {
+/// from a mapping `name -> vertex`: in the order of `order` (the first surface's names)
+/// when it holds the same names, else in the mapping's own order.
+fn landmarks(obj: &Bound<'_, PyAny>, k: usize, order: Option<&[String]>) -> PyResult<Landmarks> {
     let place = landmarks_name(k);
     let pairs: Vec<(i64, String)> = if let Ok(map) = obj.cast::<pyo3::types::PyDict>() {
         map.iter()
@@ -55,6 +56,7 @@ fn landmarks(obj: &Bound<'_, PyAny>, k: usize) -> PyResult<Landmarks> {
             .map(|(j, v)| (v, j.to_string()))
             .collect()
     };
+    let pairs = by_name(pairs, order);
     let pairs = pairs
         .into_iter()
         .enumerate()
@@ -89,10 +91,11 @@ pub fn morph<'py>(
     py: Python<'py>,
     surfaces: &Bound<'py, PyAny>,
     landmarks: &Bound<'py, PyAny>,
-    frames: usize,
+    frames: &Bound<'py, PyAny>,
     lambda_: Option<f64>,
     hard: bool,
 ) -> PyResult<MorphArrays<'py>> {
+    let frames = crate::options::count(frames, "frames")?;
     if hard && lambda_.is_some() {
         return Err(usage("lambda_ and hard=True exclude each other"));
     }
@@ -114,13 +117,18 @@ pub fn morph<'py>(
     args.hard = hard;
     args.check_counts().map_err(to_py)?;
     let mut keys = Vec::with_capacity(surfaces.len());
+    let order = dict_names(&lists[0]);
     for (k, (pair, lms)) in surfaces.iter().zip(&lists).enumerate() {
         let (v, f): (Bound<'py, PyAny>, Bound<'py, PyAny>) = pair
             .extract()
-            .map_err(|_| bad_input(format!("surfaces[{k}] must be a (V, F) pair")))?;
+            .map_err(|_| bad_input(format!("<surfaces[{k}]>: must be a (V, F) pair")))?;
         let place = surface_name(k).display().to_string();
-        let input = mesh_input(&v, &f).map_err(|e| in_place(py, e, &place))?;
-        keys.push(Surface::new(input.mesh, self::landmarks(lms, k)?));
+        let input = mesh_input_at(&v, &f, &place)?;
+        if k == 0 {
+            check_frames_memory(frames, input.mesh.num_vertices())?;
+        }
+        let lms = self::landmarks(lms, k, order.as_deref())?;
+        keys.push(Surface::new(input.mesh, lms));
     }
     let (solution, report, positions) = py
         .detach(|| {
@@ -150,4 +158,64 @@ pub fn morph<'py>(
         faces_array(py, m.faces())?,
         to_py_json(py, &value)?,
     ))
+}
+
+/// The names of a landmark dict, in its order (`None` for a sequence).
+fn dict_names(obj: &Bound<'_, PyAny>) -> Option<Vec<String>> {
+    let map = obj.cast::<pyo3::types::PyDict>().ok()?;
+    map.keys()
+        .iter()
+        .map(|k| k.str().map(|s| s.to_string()))
+        .collect::<PyResult<_>>()
+        .ok()
+}
+
+/// `pairs` (vertex, name) reordered to the names of `order`, when they are the same set;
+/// else as given (the morph then names the first mismatch).
+fn by_name(pairs: Vec<(i64, String)>, order: Option<&[String]>) -> Vec<(i64, String)> {
+    let Some(order) = order else { return pairs };
+    let mut sorted: Vec<(i64, String)> = Vec::with_capacity(pairs.len());
+    for name in order {
+        match pairs.iter().find(|(_, n)| n == name) {
+            Some(p) => sorted.push(p.clone()),
+            None => return pairs,
+        }
+    }
+    if sorted.len() == pairs.len() {
+        sorted
+    } else {
+        pairs
+    }
+}
+
+/// Bytes per frame vertex kept at once: the frame's positions in the result array (3 f64)
+/// and the frame being evaluated.
+const FRAME_BYTES_PER_VERTEX: u64 = 2 * 3 * 8;
+
+/// Refuses, before any work, `frames` frames of `n` vertices that would not fit in the
+/// memory available (the result alone is `frames × n × 24` bytes): a failed allocation
+/// would abort the interpreter.
+fn check_frames_memory(frames: usize, n: usize) -> PyResult<()> {
+    let need = (frames as u64)
+        .saturating_mul(n as u64)
+        .saturating_mul(FRAME_BYTES_PER_VERTEX);
+    let Some((limit, from)) = conformap_operators::available_memory() else {
+        return Ok(());
+    };
+    if need <= limit {
+        return Ok(());
+    }
+    let human = conformap::pipeline::memory::human_bytes;
+    Err(to_py(Failure::BadInput(
+        format!(
+            "frames={frames} of {n} vertices need an estimated {} at peak, more than the {} \
+             available ({from}); nothing was computed",
+            human(need),
+            human(limit)
+        ),
+        Some(format!(
+            "ask for fewer frames (at most about {}), or evaluate the morph in parts",
+            limit / (n.max(1) as u64 * FRAME_BYTES_PER_VERTEX)
+        )),
+    )))
 }

@@ -70,3 +70,19 @@ def test_write_read_roundtrip(tmp_path):
     assert np.array_equal(F2, F)
     assert np.max(np.abs(V2 - V)) < 1e-12
     assert "vt " in out.read_text()
+
+
+def test_sphere_uv_is_the_cli_texture(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    S, _ = conformap.sphere_map(V, F)
+    uv, F_uv = conformap.sphere_uv(S, F)
+    assert F_uv.shape == F.shape
+    corners = uv[F_uv]  # (faces, 3, 2)
+    span = corners.max(axis=1) - corners.min(axis=1)
+    assert span.max() <= 0.25  # no face spans the texture (the seam is split)
+    out = tmp_path / "s.obj"
+    conformap.write_mesh(out, V, F, uv=uv, F_uv=F_uv)
+    code, _, err = run_cli(["sphere", str(FIXTURES / "spot.obj"), "-o", str(tmp_path / "cli.obj")], tmp_path)
+    assert code == 0, err
+    vt = lambda p: [l for l in p.read_text().splitlines() if l.startswith("vt ")]
+    assert len(vt(out)) == len(vt(tmp_path / "cli.obj")) == uv.shape[0]

@@ -133,9 +133,9 @@ def test_morph_errors(keys, tmp_path):
     assert info.value.exit_code == 2
     with pytest.raises(conformap.ConformapError, match="a morph needs at least two surfaces"):
         conformap.morph([(V, F)], [lm], 4)
-    with pytest.raises(conformap.ConformapError, match="--frames 1 cannot hold 2 key surfaces"):
+    with pytest.raises(conformap.ConformapError, match="frames=1 cannot hold 2 key surfaces"):
         conformap.morph([(V, F), (W, F)], [lm, lm], 1)
-    with pytest.raises(conformap.ConformapError, match="lambda must be a finite number > 0"):
+    with pytest.raises(conformap.ConformapError, match="lambda_ must be a finite number > 0"):
         conformap.morph([(V, F), (W, F)], [lm, lm], 4, lambda_=-1.0)
     with pytest.raises(conformap.ConformapError, match="exclude each other"):
         conformap.morph([(V, F), (W, F)], [lm, lm], 4, lambda_=1.0, hard=True)

@@ -18,7 +18,10 @@
 //!   cross-ratio distortion).
 //! - **Stereographic projection** and its inverse in both charts ([`stereographic`],
 //!   [`inverse_stereographic`], …), and the equirectangular texture coordinates of a sphere
-//!   map ([`equirectangular_uv`], [`from_equirectangular_uv`]).
+//!   map ([`equirectangular_uv`], [`from_equirectangular_uv`]); the texture to write,
+//!   one coordinate per face corner, split along the seam meridian and with the poles
+//!   treated ([`equirectangular_corner_uv`] → [`SphereTexture`], read back by
+//!   [`sphere_points_from_corner_uv`]).
 //! - **Möbius maps**: [`Mobius`] (`(az + b)/(cz + d)`, `ad − bc = 1`, acting on the sphere
 //!   through [`stereographic`]) and [`DiskAutomorphism`] (`(az + b)/(b̄z + ā)`); their
 //!   optimization for the uniformity or emphasized-area energies of Jin et al. (2004, §3.4):
@@ -60,6 +63,7 @@ mod mobius;
 mod sphere;
 mod stereo;
 mod summary;
+mod texture;
 
 #[doc(hidden)]
 pub mod doc_support;
@@ -98,6 +102,10 @@ pub use stereo::{
     inverse_stereographic_south, stereographic, stereographic_south,
 };
 pub use summary::{double_cover_peak_bytes, mobius_peak_bytes, sphere_peak_bytes};
+pub use texture::{
+    equirectangular_corner_uv, sphere_points_from_corner_uv, SphereTexture, SPHERE_POLAR_READ,
+    SPHERE_POLE_REL, SPHERE_UV_AGREE_TOL,
+};
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

@@ -137,30 +137,10 @@ pub fn mesh_hint(e: &conformap_mesh::MeshError) -> Option<&'static str> {
 impl From<conformap_disk::DiskError> for Failure {
     fn from(e: conformap_disk::DiskError) -> Self {
         use conformap_disk::DiskError as E;
-        use conformap_mesh::Topology as T;
         match e {
             E::WrongTopology { .. } | E::NoInteriorVertex => {
                 let hint = match &e {
-                    E::WrongTopology { found } => match found {
-                        T::SeveralComponents { components } => format!(
-                            "rerun with --repair to keep the largest component (by face \
-                             count) and drop the {} other{}; `conformap info MESH` shows what \
-                             would be dropped",
-                            components - 1,
-                            if *components == 2 { "" } else { "s" }
-                        ),
-                        T::Sphere => "a closed surface has no boundary to put on the circle: \
-                                      cut it open (delete a face or a strip of faces) first"
-                            .to_string(),
-                        T::MultiplyConnected { .. } => "fill every hole but the outer \
-                                                        boundary first, or cut the holes \
-                                                        open to the outer boundary"
-                            .to_string(),
-                        _ => "a disk map needs genus 0: cut the surface along its handle \
-                              loops into a disk first; `conformap info MESH` shows the \
-                              topology"
-                            .to_string(),
-                    },
+                    E::WrongTopology { found } => topology_hint(found),
                     _ => "refine the mesh (subdivide) so that some vertex lies off the \
                           boundary"
                         .to_string(),
@@ -170,13 +150,16 @@ impl From<conformap_disk::DiskError> for Failure {
             E::NotGenusZero { .. } => Self::BadInput(
                 e.to_string(),
                 Some(
-                    "`conformap info MESH` shows the topology; a disk map needs genus 0 and \
-                     at least one boundary loop (`conformap global` maps surfaces with \
-                     handles)"
+                    "a disk map needs genus 0 and at least one boundary loop: `conformap \
+                     global` maps surfaces with handles, `conformap sphere` closed genus-0 \
+                     ones; `conformap info MESH` shows the topology"
                         .to_string(),
                 ),
             ),
-            E::OuterLoopOutOfRange { .. } | E::InvalidOption { .. } => Self::Usage(e.to_string()),
+            E::InvalidOption { name, reason } => {
+                Self::Usage(format!("invalid option {}: {reason}", option_flag(name)))
+            }
+            E::OuterLoopOutOfRange { .. } => Self::Usage(e.to_string()),
             E::UnknownBoundary { .. } => Self::Usage(e.to_string()),
             E::Fill(_)
             | E::VertexOutOfRange { .. }
@@ -222,14 +205,44 @@ pub fn repair_failure(raw: &conformap_io::RawMesh, e: conformap_mesh::MeshError)
     }
 }
 
-/// The hint for a mesh of the wrong topology (sphere, disk and global maps alike).
-fn topology_hint() -> Option<String> {
-    Some(
-        "`conformap info MESH` shows the topology: `sphere` maps closed genus-0 \
-         meshes, `disk` meshes with boundary loops and no handles, `global` meshes \
-         with handles or several boundary loops"
+/// The hint for a mesh of the wrong topology, for every command that refuses one: the
+/// command that maps a mesh of topology `found`, then where to see the topology.
+///
+/// # Examples
+/// ```
+/// use conformap_mesh::Topology;
+/// let hint = conformap::failure::topology_hint(&Topology::ClosedHigherGenus { genus: 1 });
+/// assert!(hint.contains("`conformap global`"));
+/// ```
+pub fn topology_hint(found: &conformap_mesh::Topology) -> String {
+    use conformap_mesh::Topology as T;
+    let which = match found {
+        T::Disk => "`conformap disk` maps a disk onto the unit disk (`conformap flatten` \
+                    flattens it with a free or prescribed boundary)"
             .to_string(),
-    )
+        T::Sphere => "`conformap sphere` maps a closed genus-0 surface onto the unit sphere \
+                      (`conformap atlas` charts it flat through cuts)"
+            .to_string(),
+        T::MultiplyConnected { .. } => "`conformap disk` maps a genus-0 surface with several \
+                                        boundary loops onto a disk with circular holes \
+                                        (`conformap flatten` flattens it, `conformap global` \
+                                        maps it by double covering)"
+            .to_string(),
+        T::ClosedHigherGenus { genus } => format!(
+            "`conformap global` maps a closed surface of genus {genus} (a holomorphic 1-form, \
+             seamed); `conformap atlas` charts it flat through cuts"
+        ),
+        T::OpenHigherGenus { genus, .. } => format!(
+            "`conformap global` maps a surface of genus {genus} with boundary (by double \
+             covering); `conformap atlas` charts it flat through cuts"
+        ),
+        T::SeveralComponents { components } => format!(
+            "`conformap atlas` charts all {components} components; or rerun with --repair to \
+             keep the largest component (by face count) and map it alone"
+        ),
+        _ => "`conformap atlas` charts any mesh".to_string(),
+    };
+    format!("{which}; `conformap info MESH` shows the topology")
 }
 
 impl From<conformap_sphere::SphereError> for Failure {
@@ -238,7 +251,10 @@ impl From<conformap_sphere::SphereError> for Failure {
     fn from(e: conformap_sphere::SphereError) -> Self {
         use conformap_sphere::SphereError as E;
         match e {
-            E::WrongTopology { .. } => Self::BadInput(e.to_string(), topology_hint()),
+            E::WrongTopology { found, .. } => {
+                let hint = topology_hint(&found);
+                Self::BadInput(e.to_string(), Some(hint))
+            }
             E::MapLength { .. }
             | E::NonFiniteMap { .. }
             | E::NotOnSphere { .. }
@@ -259,7 +275,10 @@ impl From<conformap_global::GlobalError> for Failure {
         use conformap_global::GlobalError as E;
         match e {
             E::Sphere(inner) => inner.into(),
-            E::WrongTopology { .. } => Self::BadInput(e.to_string(), topology_hint()),
+            E::WrongTopology { found, .. } => {
+                let hint = topology_hint(&found);
+                Self::BadInput(e.to_string(), Some(hint))
+            }
             E::InvalidOption { .. } | E::ZeroTargetOutOfRange { .. } => {
                 Self::BadInput(e.to_string(), None)
             }
@@ -285,11 +304,22 @@ pub fn render_failure(e: RenderError, path: &Path) -> Failure {
         }
         RenderError::Collapsed => "check the map: every vertex has the same image",
         RenderError::NonFiniteValue { .. } => "recompute the map: it holds NaN or infinity",
-        RenderError::InvalidOption { .. } => return Failure::Usage(e.to_string()),
+        RenderError::InvalidOption { name, reason } => {
+            return Failure::Usage(format!("invalid option {}: {reason}", option_flag(name)))
+        }
         _ => "check that the output's directory is writable",
     };
     Failure::BadInput(
         format!("cannot draw {}: {e}", path.display()),
         Some(hint.to_string()),
     )
+}
+
+/// The command-line flag of a library option field (`max_sweeps` → `--max-iter`,
+/// `azimuth_deg` → `--azimuth`), so that messages name what the user typed.
+pub fn option_flag(name: &str) -> String {
+    match name {
+        "max_sweeps" | "max_iter" => "--max-iter".to_string(),
+        other => format!("--{}", other.trim_end_matches("_deg").replace('_', "-")),
+    }
 }

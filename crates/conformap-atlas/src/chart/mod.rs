@@ -10,6 +10,7 @@
 
 mod cut;
 mod quality;
+mod repair;
 mod split;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};
@@ -23,6 +24,7 @@ use crate::error::AtlasError;
 
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
+pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
 pub use split::{split_overlapping, Piece, MAX_SPLIT_DEPTH};
 
 /// A closed surface cut into one disk and flattened.
@@ -39,6 +41,8 @@ pub struct Chart {
     pub cut_length: f64,
     /// The closing residual of the boundary curve (boundary first flattening).
     pub closure_residual: f64,
+    /// Faces the flattening folded, before they were unfolded ([`unfold`]).
+    pub folded_before_repair: usize,
 }
 
 /// Charts one connected component of any topology:
@@ -118,7 +122,7 @@ pub fn chart_closed(
 ) -> Result<Chart, AtlasError> {
     // a surface with boundary comes here with genus 0: a planar domain needs no cut
     let handles = mesh.boundary_loops().is_empty() && mesh.genus() != Some(0);
-    let (edges, mut on_cut) = if handles {
+    let (edges, on_cut) = if handles {
         let basis = homology_basis(mesh, None).map_err(|e| AtlasError::Mesh(e.to_string()))?;
         let on_cut = cut_graph(mesh, &basis);
         (basis.edges, on_cut)
@@ -128,6 +132,10 @@ pub fn chart_closed(
         (edges, none)
     };
     let edges = &edges;
+    if cones == 0 && !mesh.boundary_loops().is_empty() {
+        // boundary first flattening's free boundary: no cone metric to factor
+        return flatten_cut(mesh, edges, on_cut, ConeSet::none(mesh.num_vertices()), 0.0);
+    }
     let metric = if !handles {
         ConeMetric::new(mesh)?
     } else {
@@ -141,8 +149,22 @@ pub fn chart_closed(
         ConeMetric::with_pinned(mesh, &pinned)?
     };
     let set = place_cones(&metric, cones, options);
-    let graph = cut::Graph::new(mesh, edges);
     let handle_length = cut_length(mesh, edges, &on_cut);
+    flatten_cut(mesh, edges, on_cut, set, handle_length)
+}
+
+/// Joins the cones of `set` to the cut `on_cut` (handle loops of length `handle_length`,
+/// or a boundary), opens the surface along it and flattens the disk with the cone metric's
+/// scale on its boundary (the free boundary when there are no cones on a surface with
+/// boundary), then unfolds any folded face.
+fn flatten_cut(
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    mut on_cut: Vec<bool>,
+    set: ConeSet,
+    handle_length: f64,
+) -> Result<Chart, AtlasError> {
+    let graph = cut::Graph::new(mesh, edges);
     let targets: Vec<u32> = set.cones.iter().map(|c| c.vertex).collect();
     let seeds: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
     let added = cut::join_to_cut(mesh, edges, &graph, &mut on_cut, &targets, &seeds);
@@ -170,9 +192,13 @@ pub fn chart_closed(
         .with_boundary(boundary)
         .with_equal_lengths(seam_pairs(mesh, &cut));
     let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
+    let mut uv = flat.map;
+    let folded_before_repair = repair::folded_faces(&cut.mesh, &uv).len();
+    unfold(&cut.mesh, &mut uv);
     Ok(Chart {
         cut,
-        uv: flat.map,
+        uv,
+        folded_before_repair,
         cones: set,
         cut_length: handle_length + added,
         closure_residual: flat.closure_residual,

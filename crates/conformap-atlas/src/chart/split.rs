@@ -27,9 +27,10 @@ pub struct Piece {
     pub uv: Vec<Complex64>,
 }
 
-/// How deep splitting goes: at most 2^6 = 64 pieces from one chart. A chart still
-/// overlapping then is returned as it is (the report's overlap says so).
-pub const MAX_SPLIT_DEPTH: usize = 6;
+/// How deep splitting goes: at most 2^10 pieces from one chart (armadillo's folded-then-
+/// unfolded chart needed more than 6 levels). A chart still overlapping then is returned
+/// as it is (the report's overlap says so).
+pub const MAX_SPLIT_DEPTH: usize = 10;
 
 /// Splits `piece` until no part of it overlaps itself.
 ///
@@ -168,7 +169,7 @@ fn local_uv(local: &HashMap<u32, u32>, parent: &[Complex64], n: usize) -> Vec<Co
 }
 
 /// The piece of `piece` made of its faces `faces`, in the parent's layout.
-fn sub_piece(piece: &Piece, faces: &[u32]) -> Result<Piece, AtlasError> {
+pub(crate) fn sub_piece(piece: &Piece, faces: &[u32]) -> Result<Piece, AtlasError> {
     let mut local = HashMap::new();
     let mut original = Vec::new();
     let mut positions = Vec::new();

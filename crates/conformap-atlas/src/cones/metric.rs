@@ -32,6 +32,9 @@ pub struct ConeMetric {
     positions: Vec<[f64; 3]>,
     /// `√(surface area)`, the length scale of cone spacing.
     length: f64,
+    /// Neighbours of each vertex (compressed rows: `ring_start[v]..ring_start[v + 1]`).
+    ring_start: Vec<usize>,
+    ring: Vec<u32>,
 }
 
 impl ConeMetric {
@@ -84,7 +87,10 @@ impl ConeMetric {
             faces: mesh.faces().to_vec(),
             positions: mesh.positions().to_vec(),
             length: conformap_operators::surface_area(mesh).sqrt(),
+            ring_start: Vec::new(),
+            ring: Vec::new(),
         };
+        (metric.ring_start, metric.ring) = one_rings(mesh);
         metric.u_k = metric.solve_full(&metric.curvature.clone());
         Ok(metric)
     }
@@ -131,6 +137,26 @@ impl ConeMetric {
         self.solve_full(&e)
     }
 
+    /// The Green's functions of `vertices` (as [`Self::green`]) from one solve with as
+    /// many right-hand sides: the factor is read once for all of them.
+    pub fn greens(&self, vertices: &[u32]) -> Vec<Vec<f64>> {
+        let ni = self.part.interior.len();
+        if ni == 0 {
+            return vec![vec![0.0; self.curvature.len()]; vertices.len()];
+        }
+        let mut rhs = vec![0.0; ni * vertices.len()];
+        for (j, &v) in vertices.iter().enumerate() {
+            if self.part.is_interior[v as usize] {
+                rhs[j * ni + self.part.local[v as usize] as usize] = 1.0;
+            }
+        }
+        self.chol.solve_in_place(&mut rhs, vertices.len());
+        let zeros = vec![0.0; self.part.boundary.len()];
+        rhs.chunks_exact(ni)
+            .map(|x| self.part.assemble(x, &zeros))
+            .collect()
+    }
+
     /// The scale factor `u` with defect `k` at each cone `(vertex, k)` and 0 elsewhere
     /// (`Σ k = 2πχ` on a closed surface; see the module docs).
     pub fn scale_factor(&self, cones: &[(u32, f64)]) -> Vec<f64> {
@@ -153,6 +179,11 @@ impl ConeMetric {
         d2 < (fraction * self.length).powi(2)
     }
 
+    /// The vertices joined to `v` by an edge.
+    pub fn neighbours(&self, v: u32) -> &[u32] {
+        &self.ring[self.ring_start[v as usize]..self.ring_start[v as usize + 1]]
+    }
+
     /// `u_K = L⁻¹ K` (the part of every scale factor the cones do not set).
     pub fn curvature_potential(&self) -> &[f64] {
         &self.u_k
@@ -173,6 +204,26 @@ impl ConeMetric {
     pub fn area_spread(&self, u: &[f64]) -> f64 {
         sd(&self.face_log_scale(u))
     }
+}
+
+/// The one-rings of `mesh` as compressed rows (sorted, no repeats).
+fn one_rings(mesh: &TriMesh) -> (Vec<usize>, Vec<u32>) {
+    let mut rows: Vec<Vec<u32>> = vec![Vec::new(); mesh.num_vertices()];
+    for t in mesh.faces() {
+        for k in 0..3 {
+            rows[t[k] as usize].push(t[(k + 1) % 3]);
+            rows[t[(k + 1) % 3] as usize].push(t[k]);
+        }
+    }
+    let mut start = vec![0];
+    let mut ring = Vec::new();
+    for mut r in rows {
+        r.sort_unstable();
+        r.dedup();
+        ring.extend(r);
+        start.push(ring.len());
+    }
+    (start, ring)
 }
 
 /// Standard deviation (population) of `x`.

@@ -6,5 +6,6 @@ mod placement;
 
 pub use metric::ConeMetric;
 pub use placement::{
-    best_defects, place_cones, Cone, ConeOptions, ConeSet, CONE_SPACING, MIN_CONE_ANGLE,
+    best_defects, place_cones, Cone, ConeOptions, ConeSet, CONE_SPACING, MAX_CONE_ANGLE,
+    MIN_CONE_ANGLE,
 };

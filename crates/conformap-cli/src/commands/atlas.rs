@@ -8,6 +8,9 @@ use crate::args::{InputArgs, OutputArgs};
 
 /// Arguments of `conformap atlas`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): one `vt` per face corner (`f v/vt`, the `v` lines in the input's order), every chart packed into the unit square with one texel density; `--flat`: the atlas as a flat mesh."
+)]
 pub struct AtlasArgs {
     /// The mesh: any number of components, each a valid manifold surface of any topology.
     #[command(flatten)]

@@ -11,6 +11,11 @@ use crate::args::{choice, parse_size};
 
 /// Arguments of `conformap batch`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Example (every input mapped by the default ccem-qn, refused with exit 3 \
+    if it did not converge; the summary line names inputs stopped at the iteration cap):\n  \
+    conformap batch --command disk --out-dir out/ fixtures/woody.obj fixtures/alligator.obj -- --strict"
+)]
 pub struct BatchArgs {
     /// The command run on every input.
     #[arg(long, value_parser = choice::<BatchCommand>())]
@@ -41,7 +46,7 @@ pub struct BatchArgs {
     /// column; relative paths from the manifest's directory).
     #[arg(required = true, value_name = "MANIFEST|MESH")]
     pub inputs: Vec<PathBuf>,
-    /// Options of the command, after `--` (e.g. `-- --method cem --strict`).
+    /// Options of the command, after `--` (e.g. `-- --strict`, `-- --method harmonic`).
     #[arg(last = true, value_name = "OPTIONS")]
     pub options: Vec<String>,
 }

@@ -8,6 +8,9 @@ use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap disk`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): one `vt` per vertex, vt = ((u+1)/2, (v+1)/2) for the map u + iv in the unit disk (with holes: the same disk, the holes as circles inside it); `--flat`: the points (u, v, 0)."
+)]
 pub struct DiskArgs {
     /// The mesh and how to read it: genus 0 with one boundary loop (the unit disk) or
     /// several (the unit disk with circular holes, by Koebe's iteration).

@@ -10,6 +10,9 @@ use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap flatten`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): one `vt` per vertex, the layout's bounding box scaled uniformly into the unit square (aspect kept); `--flat`: the raw layout (u, v, 0), lengths as on the surface."
+)]
 pub struct FlattenArgs {
     /// The mesh (connected, genus 0, with a boundary; holes are filled and left free).
     #[command(flatten)]

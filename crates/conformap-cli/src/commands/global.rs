@@ -10,6 +10,9 @@ use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap global`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): one `vt` per face corner (`f v/vt`; glTF: vertices split along the seams), the layout fitted into the unit square: vt = (layout − uv_offset) · uv_scale, both in the report's `global` section; across a seam the two sides differ by a period (a translation). `--flat`: the layout itself as positions (u, v, 0)."
+)]
 pub struct GlobalArgs {
     /// The mesh (connected; genus ≥ 1, or ≥ 2 boundary loops) and how to read it.
     #[command(flatten)]

@@ -15,7 +15,10 @@ pub struct MetricsArgs {
     /// u = 2·vt_x − 1, v = 2·vt_y − 1, the inverse of what `disk` writes), a seamed map
     /// with texture coordinates per face corner (`f v/vt`, as `global` writes; read as
     /// (u, v) = vt, no circle fits), or a flat mesh without texture coordinates whose
-    /// (x, y) are the map.
+    /// (x, y) are the map. A sphere map (`sphere --flat`'s unit-sphere points, or `sphere
+    /// -o`'s texture coordinates of a closed genus-0 mesh) is measured on the sphere; a map
+    /// on its own refinement of the mesh (`global -o` where it split boundary chords) on
+    /// that refinement.
     pub param: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]

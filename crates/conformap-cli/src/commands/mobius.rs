@@ -10,6 +10,9 @@ use crate::args::{choice, InputArgs, OutputArgs};
 
 /// Arguments of `conformap mobius`.
 #[derive(Debug, Clone, Args)]
+#[command(
+    after_help = "Texture coordinates (-o): as the command that made the map writes them: disk, vt = ((u+1)/2, (v+1)/2); sphere, the equirectangular projection u = (atan2(y, x) + π)/2π, v = (asin z + π/2)/π, one per face corner, split along the seam meridian; `--flat`: (u, v, 0) or the unit-sphere points."
+)]
 pub struct MobiusArgs {
     /// The 3D mesh and how to read it.
     #[command(flatten)]

@@ -22,8 +22,9 @@ pub struct MorphArgs {
     #[arg(long)]
     pub frames: usize,
     /// `OUT.glb` (S1 with one morph target per key surface and an animation of their
-    /// weights, one keyframe per frame at 24 frames per second) or `DIR/` (an existing
-    /// directory: `frame_0000.obj` …).
+    /// weights, one keyframe per frame at 24 frames per second) or `DIR/` (created when
+    /// missing: `frame_0000.obj` …; frame files of an earlier run this run did not write
+    /// are removed).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Landmark weight λ of Eq. 34 (default: the library's `DEFAULT_LAMBDA`). Where

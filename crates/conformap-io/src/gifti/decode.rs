@@ -84,7 +84,7 @@ pub(crate) fn decode_values(
         )
     };
     let count = rows.checked_mul(columns).ok_or_else(too_large)?;
-    let values = match a.encoding.as_str() {
+    let values = match encoding(&a.encoding) {
         "ASCII" => ascii(&a.data, count).map_err(|p| bad(p, CORRUPT_HINT))?,
         "Base64Binary" | "GZipBase64Binary" => {
             let (size, read) = data_type(&a.data_type).ok_or_else(|| {
@@ -95,7 +95,7 @@ pub(crate) fn decode_values(
             })?;
             let len = count.checked_mul(size).ok_or_else(too_large)?;
             let bytes = binary(a, len).map_err(|p| bad(p, CORRUPT_HINT))?;
-            let big = a.endian == "BigEndian";
+            let big = matches!(a.endian.as_str(), "BigEndian" | "GIFTI_ENDIAN_BIG");
             bytes
                 .chunks_exact(size)
                 .map(|c| {
@@ -124,6 +124,19 @@ pub(crate) fn decode_values(
     } else {
         values
     })
+}
+
+/// The standard name of an encoding: GIfTI's C library (gifticlib) and files written
+/// through it spell the encodings by their code names (`GIFTI_ENCODING_B64BIN`), which
+/// nibabel reads as well.
+fn encoding(name: &str) -> &str {
+    match name {
+        "GIFTI_ENCODING_ASCII" => "ASCII",
+        "GIFTI_ENCODING_B64BIN" => "Base64Binary",
+        "GIFTI_ENCODING_B64GZ" => "GZipBase64Binary",
+        "GIFTI_ENCODING_EXTBIN" => "ExternalFileBinary",
+        other => other,
+    }
 }
 
 /// The row count of an `n × columns` array, or what is wrong with its dimensions.
@@ -169,7 +182,7 @@ fn binary(a: &DataArray, len: usize) -> Result<Vec<u8>, String> {
         .filter(|b| !b.is_ascii_whitespace())
         .collect();
     let most = text.len() / 4 * 3;
-    let gzip = a.encoding == "GZipBase64Binary";
+    let gzip = encoding(&a.encoding) == "GZipBase64Binary";
     let room = if gzip {
         most.saturating_mul(MAX_INFLATE_RATIO)
     } else {

@@ -55,12 +55,18 @@ fn data_array(
     );
 }
 
+/// The transform's XML. The matrix is written one row per line, as nibabel and gifticlib
+/// write it: nibabel reads a one-line `MatrixData` as a vector of 16 numbers, not 4 × 4.
 fn transform_xml(t: &CoordinateTransform) -> String {
     let numbers: Vec<String> = t
         .matrix
         .iter()
-        .flatten()
-        .map(|x| format!("{x:?}"))
+        .map(|row| {
+            row.iter()
+                .map(|x| format!("{x:?}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
         .collect();
     format!(
         "<CoordinateSystemTransformMatrix><DataSpace><![CDATA[{}]]></DataSpace>\
@@ -68,7 +74,7 @@ fn transform_xml(t: &CoordinateTransform) -> String {
          </CoordinateSystemTransformMatrix>\n",
         t.data_space.replace("]]>", ""),
         t.transformed_space.replace("]]>", ""),
-        numbers.join(" ")
+        numbers.join("\n")
     )
 }
 

@@ -14,6 +14,7 @@ use conformap_operators::{
 use num_complex::Complex64;
 use sprs::CsMat;
 
+use crate::sphere::exact::{centre, inscribed_radial};
 use crate::sphere::report::{SphereReport, StageRecord, Timings};
 use crate::sphere::source::{farthest_vertex, sphere_source_face};
 use crate::sphere::untangle::{inverted_faces, untangle};
@@ -136,7 +137,15 @@ pub struct SphereMap {
 ///    stereographic chart centred on the bad region, where the conformal map is finite and
 ///    smooth. The next correction does the same from the other pole. A correction is kept if
 ///    it lowers the mean angle distortion by more than `min_gain` (relative); the loop stops
-///    at the first that does not, or after `max_corrections`.
+///    at the first that does not, or after `max_corrections`. At least 3 vertices are
+///    kept; a correction whose kept cap reaches the chart's pole is skipped.
+/// 4. **Centring**: if the map still inverts a face (a coarse mesh, whose large faces
+///    invert under a poor normalization), the Möbius map moving the vertex centroid to the
+///    origin is applied when it inverts fewer.
+///
+/// A mesh inscribed in a sphere whose radial projection turns no face over is returned as
+/// that projection (`method` `"radial-projection"`, no factorization): it keeps every
+/// length cross-ratio, the exact answer.
 ///
 /// Factorizations: one of `L` reduced by the pinned vertex, one per correction.
 ///
@@ -169,6 +178,9 @@ pub fn sphere_map(mesh: &TriMesh, options: &SphereOptions) -> Result<SphereMap, 
         });
     }
     check_options(mesh, options)?;
+    if let Some(points) = inscribed_radial(mesh) {
+        return Ok(radial_map(mesh, points, t_all));
+    }
     let t = Instant::now();
     let l = cotan_laplacian(mesh);
     let first = solve_with(mesh, &l, options, ms(t), t_all)?;
@@ -294,6 +306,7 @@ fn solve_with(
     let mut best_points = points.clone();
     let mut fixed_vertices = 0;
     let mut factorizations = 1;
+    let mut kept = 0;
     for k in 0..options.max_corrections {
         let from_south = k % 2 == 0;
         let (next, nfixed, fms) =
@@ -301,6 +314,15 @@ fn solve_with(
         factorizations += 1;
         timings.factor += fms;
         fixed_vertices = nfixed;
+        let Some(next) = next else {
+            // the kept cap reaches the chart's pole (a small mesh): nothing to correct
+            stages.push(StageRecord {
+                stage: "correction skipped: the kept cap reaches the chart's pole".to_string(),
+                mean_angle_distortion_deg: stages[best].mean_angle_distortion_deg,
+                flipped_faces: stages[best].flipped_faces,
+            });
+            break;
+        };
         let rec = stage_record(
             mesh,
             &mesh_angles,
@@ -316,10 +338,24 @@ fn solve_with(
         let no_new_flips = rec.flipped_faces <= stages[best].flipped_faces;
         stages.push(rec);
         if gain > options.min_gain && no_new_flips {
+            kept += 1;
             best = stages.len() - 1;
             best_points = next;
         } else {
             break;
+        }
+    }
+    if stages[best].flipped_faces > 0 {
+        // a face larger than a hemisphere inverts under a poor normalization (coarse
+        // meshes): the centred Möbius normalization
+        let mut moved = best_points.clone();
+        centre(&mut moved);
+        let rec = stage_record(mesh, &mesh_angles, &moved, "Möbius centring");
+        let fewer = rec.flipped_faces < stages[best].flipped_faces;
+        stages.push(rec);
+        if fewer {
+            best = stages.len() - 1;
+            best_points = moved;
         }
     }
     timings.solve = ms(t_all) - timings.assemble - timings.factor;
@@ -330,7 +366,7 @@ fn solve_with(
         pinned_vertex: pinned,
         conjugated,
         fixed_vertices,
-        corrections: best,
+        corrections: kept,
         stages,
         best_stage: best,
         factorizations,
@@ -446,7 +482,10 @@ fn stage_record(
 
 /// One correction: keep the `fraction` of vertices nearest the south pole (`from_south`) or
 /// the north pole, and re-solve the rest as a harmonic map in the chart centred on the other
-/// pole. Returns the new points, the number kept and the factorization time.
+/// pole. Returns the new points (`None` when a kept value is not finite in the chart: the
+/// cap reaches its pole, as on a mesh of a few vertices, or the solve overflows), the number
+/// kept and the factorization time. At least 3 vertices are kept (fewer pin the harmonic
+/// map to a point or a line).
 ///
 /// The factorization eliminates the free vertices in the order of the first stage's
 /// (`rank`, per vertex): an elimination order restricted to a principal submatrix fills no
@@ -459,9 +498,9 @@ fn correct(
     rank: &[u32],
     fraction: f64,
     from_south: bool,
-) -> Result<(Vec<[f64; 3]>, usize, f64), SphereError> {
+) -> Result<(Option<Vec<[f64; 3]>>, usize, f64), SphereError> {
     let n = points.len();
-    let keep = ((fraction * n as f64).ceil() as usize).clamp(1, n - 1);
+    let keep = ((fraction * n as f64).ceil() as usize).clamp(3.min(n - 1), n - 1);
     let mut order: Vec<u32> = (0..n as u32).collect();
     let height = |v: u32| points[v as usize][2];
     if from_south {
@@ -488,12 +527,17 @@ fn correct(
         }
     };
     let wb: Vec<Complex64> = kept.iter().map(|&v| chart(points[v as usize])).collect();
+    if !wb.iter().all(|z| z.re.is_finite() && z.im.is_finite()) {
+        return Ok((None, keep, 0.0));
+    }
     let mut rhs = blocks.ib_mul(&wb);
     for z in &mut rhs {
         *z = -*z;
     }
     let wi = factor.solve_complex(&rhs);
-    check_finite(&wi, "correction solve")?;
+    if check_finite(&wi, "correction solve").is_err() {
+        return Ok((None, keep, fms));
+    }
     let mut out = points.to_vec();
     for (k, &v) in part.interior.iter().enumerate() {
         out[v as usize] = if from_south {
@@ -505,5 +549,25 @@ fn correct(
     for p in &mut out {
         *p = normalize(*p);
     }
-    Ok((out, keep, fms))
+    Ok((Some(out), keep, fms))
+}
+
+/// The map of an inscribed mesh: its radial projection (see `exact.rs`).
+fn radial_map(mesh: &TriMesh, points: Vec<[f64; 3]>, t_all: Instant) -> SphereMap {
+    let angles = mesh_corner_angles(mesh);
+    let stage = stage_record(mesh, &angles, &points, "radial projection (inscribed mesh)");
+    let total = ms(t_all);
+    SphereMap {
+        points,
+        report: SphereReport {
+            method: "radial-projection".to_string(),
+            stages: vec![stage],
+            timings_ms: Timings {
+                solve: total,
+                total,
+                ..Timings::default()
+            },
+            ..SphereReport::default()
+        },
+    }
 }

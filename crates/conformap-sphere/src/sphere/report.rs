@@ -42,7 +42,8 @@ pub struct SphereReport {
     pub conjugated: bool,
     /// Vertices kept fixed in each correction solve.
     pub fixed_vertices: usize,
-    /// Corrections kept (the returned map is the output of stage `corrections`).
+    /// Corrections kept (the returned map is the output of stage `best_stage`: the last
+    /// correction kept, or the Möbius centring after it).
     pub corrections: usize,
     /// Every stage tried, in order: Angenent's map, then each correction (the last one may
     /// have been rejected).

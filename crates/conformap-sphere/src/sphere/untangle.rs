@@ -10,9 +10,14 @@ use sprs::CsMat;
 use crate::stereo::det3;
 use conformap_operators::vec3::norm;
 
-/// Untangling rounds at most: 50 (each costs a pass over the faces; a planted fold of the
+/// Untangling rounds at most: 60 (each costs a pass over the faces; a planted fold of the
 /// tests untangles in 1–5).
-pub const SPHERE_UNTANGLE_MAX_ROUNDS: usize = 50;
+pub const SPHERE_UNTANGLE_MAX_ROUNDS: usize = 60;
+
+/// Rounds after which the moved region grows by one more ring: 10. A fold whose ring is
+/// not star-shaped around the folded vertex cannot be undone by moving the ring alone; a
+/// wider region lets the neighbourhood relax (up to 6 rings).
+const SPHERE_UNTANGLE_ROUNDS_PER_RING: usize = 10;
 
 /// Faces whose chord triangle is not counter-clockwise seen from outside.
 pub(crate) fn inverted_faces(mesh: &TriMesh, points: &[[f64; 3]]) -> Vec<usize> {
@@ -40,7 +45,7 @@ pub(crate) fn untangle(
     points: &mut [[f64; 3]],
 ) -> usize {
     let n = points.len();
-    for _ in 0..SPHERE_UNTANGLE_MAX_ROUNDS {
+    for round in 0..SPHERE_UNTANGLE_MAX_ROUNDS {
         let bad = inverted_faces(mesh, points);
         if bad.is_empty() {
             return 0;
@@ -49,7 +54,12 @@ pub(crate) fn untangle(
         for &f in &bad {
             for &v in &mesh.faces()[f] {
                 moved[v as usize] = true;
-                if let Some(col) = l.outer_view(v as usize) {
+            }
+        }
+        for _ in 0..1 + round / SPHERE_UNTANGLE_ROUNDS_PER_RING {
+            let ring: Vec<usize> = (0..n).filter(|&v| moved[v]).collect();
+            for v in ring {
+                if let Some(col) = l.outer_view(v) {
                     for (u, _) in col.iter() {
                         moved[u] = true;
                     }

@@ -49,6 +49,13 @@ pub fn collect_inputs(args: &[PathBuf]) -> Result<Vec<BatchInput>, Failure> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         if let Some(other) = seen.insert(stem.clone(), mesh) {
+            if same_file(other, mesh) {
+                return Err(Failure::Usage(format!(
+                    "{} is listed twice: each input once, please (its outputs DIR/{stem}.* \
+                     would be written twice)",
+                    mesh.display()
+                )));
+            }
             return Err(Failure::Usage(format!(
                 "{} and {} have the same stem `{stem}`: their outputs DIR/{stem}.* would \
                  overwrite each other; rename one or run them in two batches",
@@ -132,6 +139,15 @@ fn split_csv(line: &str) -> Vec<String> {
         }
     }
     fields.iter().map(|f| f.trim().to_string()).collect()
+}
+
+/// Whether `a` and `b` name the same file (the same path, or both resolve to one).
+fn same_file(a: &Path, b: &Path) -> bool {
+    a == b
+        || matches!(
+            (a.canonicalize(), b.canonicalize()),
+            (Ok(x), Ok(y)) if x == y
+        )
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
-//! `conformap batch --command disk|sphere --out-dir DIR [--jobs N] [--skip-existing]
-//! [--report R.jsonl] MANIFEST|MESH… [-- OPTIONS]`: one map command over many meshes.
+//! `conformap batch --command disk|sphere|global|flatten|atlas --out-dir DIR [--jobs N]
+//! [--skip-existing] [--report R.jsonl] MANIFEST|MESH… [-- OPTIONS]`: one map command over
+//! many meshes.
 //!
 //! Each input runs as the single command would: the [`BatchTemplate`] job with the input's
 //! mesh, `-o DIR/<stem>.<ext>` and `--report DIR/<stem>.json`, run by the same [`run_map`],
@@ -35,6 +36,9 @@ use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, Out
 use crate::report::ms_since;
 
 pub mod inputs;
+mod one;
+
+pub use one::run_one;
 
 crate::choice! {
     /// The map command a batch runs.
@@ -171,10 +175,11 @@ impl BatchJob {
     /// Usage checks of the template: options naming one file cannot serve every input.
     fn check_template(&self) -> Result<(), Failure> {
         let map = self.template.as_map();
-        if map.output().flat.is_some() || map.input().vertex_map.is_some() {
+        let output = map.output();
+        if output.flat.is_some() || output.quality.is_some() || map.input().vertex_map.is_some() {
             return Err(Failure::Usage(
-                "--flat and --vertex-map name one file, not one per input: batch writes \
-                 DIR/<stem>.<ext> and DIR/<stem>.json"
+                "--flat, --quality-overlay and --vertex-map name one file, not one per input: \
+                 batch writes DIR/<stem>.<ext> and DIR/<stem>.json"
                     .to_string(),
             ));
         }
@@ -253,12 +258,7 @@ pub fn run(args: &BatchJob) -> Result<Outcome, Failure> {
 pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let inputs = collect_inputs(&args.inputs)?;
-    std::fs::create_dir_all(&args.out_dir).map_err(|e| {
-        Failure::BadInput(
-            format!("cannot create {}: {e}", args.out_dir.display()),
-            Some("write the outputs elsewhere (--out-dir)".to_string()),
-        )
-    })?;
+    create_out_dir(&args.out_dir)?;
     let jobs = inputs
         .iter()
         .map(|i| args.plan(i))
@@ -288,6 +288,7 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         w.started(jobs.len());
     }
     let (mut ok, mut failed, mut skipped) = (0usize, 0usize, 0usize);
+    let mut at_cap: Vec<String> = Vec::new();
     let mut emit = |line: &Value| {
         let text = line.to_string();
         match &watcher {
@@ -336,6 +337,9 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
             }
             pending.insert(k, line);
             while let Some(line) = pending.remove(&due) {
+                if stopped_at_cap(&line) {
+                    at_cap.push(line["input"].as_str().unwrap_or_default().to_string());
+                }
                 match line["status"].as_str() {
                     Some("ok") => ok += 1,
                     Some("skipped") => skipped += 1,
@@ -364,15 +368,33 @@ pub fn run_streaming(args: &BatchJob, sink: &mut dyn FnMut(&str)) -> Result<Outc
         "peak_rss_bytes": peak,
         "total_ms": ms_since(t_all),
     }}));
+    let cap_note = if at_cap.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; stopped at the iteration cap (not converged): {}",
+            at_cap.join(", ")
+        )
+    };
     Ok(Outcome {
         messages: vec![format!(
-            "batch {}: {} inputs, {ok} ok, {failed} failed, {skipped} skipped; {:.0} ms",
+            "batch {}: {} inputs, {ok} ok, {failed} failed, {skipped} skipped{cap_note}; {:.0} ms",
             args.command_name(),
             jobs.len(),
             ms_since(t_all)
         )],
         exit_code,
         ..Outcome::default()
+    })
+}
+
+/// Creates the output directory (and its parents) if missing.
+fn create_out_dir(dir: &Path) -> Result<(), Failure> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        Failure::BadInput(
+            format!("cannot create {}: {e}", dir.display()),
+            Some("write the outputs elsewhere (--out-dir)".to_string()),
+        )
     })
 }
 
@@ -449,4 +471,14 @@ fn exit_class(f: &Failure) -> &'static str {
         Failure::Usage(_) => "usage",
         Failure::Numerical(_) => "numerical",
     }
+}
+
+/// Whether an input's line says its solver stopped at the iteration cap: a map that did not
+/// converge, or a `--strict` refusal of one (exit 3, "did not converge").
+fn stopped_at_cap(line: &Value) -> bool {
+    let refused = line["exit_code"].as_u64() == Some(3)
+        && line["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("did not converge"));
+    line["converged"].as_bool() == Some(false) || refused
 }

@@ -11,7 +11,7 @@ use conformap_operators::Ordering as FactorOrdering;
 use conformap_sphere::{double_cover_disk_map, double_cover_peak_bytes, SphereOptions};
 
 use crate::failure::Failure;
-use crate::jobs::disk_holes;
+use crate::jobs::{disk_holes, disk_tiny};
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
 use crate::report::{
     ms_since, DoubleCoverDetail, FactorizationSection, MetricsSection, Sections, SolverDetail,
@@ -141,6 +141,24 @@ impl DiskJob {
     }
 }
 
+/// The refusal of a mesh in several pieces, with what `--repair` would do (the same code as
+/// the repair: a triangle soup is welded whole, not cut down to its largest face).
+fn components_failure(mesh: &TriMesh, components: usize) -> Failure {
+    let e = conformap_disk::DiskError::WrongTopology {
+        found: Topology::SeveralComponents { components },
+    };
+    let actions = crate::jobs::info::available_repairs(mesh);
+    Failure::BadInput(
+        e.to_string(),
+        Some(format!(
+            "`conformap atlas` charts all {components} components as they are; or rerun \
+             with --repair, which would do this: {}; `conformap info --repair MESH` describes \
+             the result",
+            actions.join("; ")
+        )),
+    )
+}
+
 /// Several boundary loops on a connected genus-0 mesh: the disk with circular holes.
 fn has_holes(mesh: &TriMesh) -> bool {
     matches!(mesh.topology(), Topology::MultiplyConnected { .. })
@@ -189,14 +207,74 @@ impl MapJob for DiskJob {
                  (`conformap info` lists them)"
             )));
         }
-        if has_holes(mesh) {
+        if let Topology::SeveralComponents { components } = mesh.topology() {
+            return Err(input.fail(components_failure(mesh, components)));
+        }
+        let solved = if has_holes(mesh) {
             let options = disk_holes::koebe_options(self.outer, self.max_iter, self.tol);
-            return disk_holes::solve(&options, input);
+            disk_holes::solve(&options, input)
+        } else if mesh.topology() == Topology::Disk && disk_tiny::has_no_interior(mesh) {
+            disk_tiny::solve(input)
+        } else {
+            match self.method.library() {
+                Some(method) => self.solve_disk(input, method),
+                None => self.solve_double_cover(input),
+            }
+        }?;
+        Ok(self.with_ignored(mesh, solved))
+    }
+}
+
+impl DiskJob {
+    /// The options given that the map of `mesh` does not use (each with why).
+    pub fn ignored_options(&self, mesh: &TriMesh) -> Vec<String> {
+        let mut ignored = Vec::new();
+        if has_holes(mesh) {
+            if self.method != Method::CcemQn {
+                ignored.push(format!(
+                    "--method {}: several boundary loops are mapped by Koebe's iteration",
+                    self.method.name()
+                ));
+            }
+            if self.ordering != FactorOrder::Auto {
+                ignored.push(
+                    "--ordering: several boundary loops are mapped by Koebe's iteration"
+                        .to_string(),
+                );
+            }
+            return ignored;
         }
-        match self.method.library() {
-            Some(method) => self.solve_disk(input, method),
-            None => self.solve_double_cover(input),
+        if disk_tiny::has_no_interior(mesh) {
+            if self.method != Method::CcemQn || self.max_iter.is_some() || self.tol.is_some() {
+                ignored.push(
+                    "--method, --max-iter, --tol: no interior vertex, nothing to iterate"
+                        .to_string(),
+                );
+            }
+            return ignored;
         }
+        if self.keep_folds && self.method == Method::CcemQn {
+            ignored.push("--keep-folds: ccem-qn never folds (only harmonic and cem do)".into());
+        }
+        let iterates = matches!(self.method, Method::CcemQn | Method::Ccem | Method::Cem);
+        if !iterates && (self.max_iter.is_some() || self.tol.is_some()) {
+            ignored.push(format!(
+                "--max-iter, --tol: {} does not iterate",
+                self.method.name()
+            ));
+        }
+        ignored
+    }
+
+    /// `solved` with the ignored options said in its summary (printed on stderr) and in the
+    /// report (`solver.ignored_options`).
+    fn with_ignored(&self, mesh: &TriMesh, mut solved: Solved) -> Solved {
+        let ignored = self.ignored_options(mesh);
+        if !ignored.is_empty() {
+            solved.summary = format!("{}; ignored: {}", solved.summary, ignored.join("; "));
+            solved.solver = solved.solver.with_ignored_options(ignored);
+        }
+        solved
     }
 }
 

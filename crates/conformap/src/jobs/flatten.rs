@@ -236,28 +236,17 @@ impl MapJob for FlattenJob {
 /// is refused with the command that maps it.
 fn check_topology(mesh: &TriMesh) -> Result<(), Failure> {
     use conformap_mesh::Topology as T;
-    let hint = match mesh.topology() {
-        T::Disk | T::MultiplyConnected { .. } => return Ok(()),
-        T::Sphere => {
-            "a closed surface has no boundary to flatten: `conformap sphere` maps it onto the \
-             sphere; cut it open (delete a face or a strip of faces) to flatten it"
-        }
-        T::SeveralComponents { .. } => {
-            "flatten maps one connected surface: rerun with --repair to keep the largest \
-             component, or split the file"
-        }
-        _ => {
-            "flatten needs genus 0: `conformap global` maps surfaces with handles; \
-             `conformap info MESH` shows the topology"
-        }
-    };
+    let found = mesh.topology();
+    if matches!(found, T::Disk | T::MultiplyConnected { .. }) {
+        return Ok(());
+    }
     Err(Failure::BadInput(
         format!(
             "boundary first flattening needs a connected genus-0 surface with a boundary, but \
              the mesh is {}",
             topology_name(mesh)
         ),
-        Some(hint.to_string()),
+        Some(crate::failure::topology_hint(&found)),
     ))
 }
 

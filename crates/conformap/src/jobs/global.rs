@@ -273,7 +273,20 @@ impl GlobalJob {
             return global_topology::solve(&topology_options(self), input);
         }
         let fail = |e: conformap_global::GlobalError| input.fail(e.into());
-        let map = global_map(mesh, &self.options(region)).map_err(fail)?;
+        let map = global_map(mesh, &self.options(region)).map_err(|e| match (&e, self.form) {
+            // a usage error with the number given (2g is known once the mesh is read)
+            (
+                conformap_global::GlobalError::InvalidOption {
+                    name: "form",
+                    reason,
+                },
+                Some(k),
+            ) => Failure::Usage(match basis_forms(mesh) {
+                Some(n) => format!("--form {k}: {reason}, {n} on this mesh (0..={})", n - 1),
+                None => format!("--form {k}: {reason}"),
+            }),
+            _ => fail(e),
+        })?;
         let seamed = map.seamed_layout(mesh).map_err(fail)?;
         global_solved::map_solved(mesh, &map, seamed)
     }
@@ -318,4 +331,14 @@ fn topology_options(args: &GlobalJob) -> TopologyOptOptions {
         o = o.with_slit_length(f);
     }
     o
+}
+
+/// The number of basis forms of `mesh` (connected, orientable): 2g on a closed surface of
+/// genus g; with b ≥ 1 boundary loops the forms are those of the double (genus 2g + b − 1),
+/// 2(2g + b − 1). `None` when the genus is unknown or the count would be 0.
+fn basis_forms(mesh: &TriMesh) -> Option<usize> {
+    let g = usize::try_from(mesh.genus()?).ok()?;
+    let b = mesh.boundary_loops().len();
+    let n = if b == 0 { 2 * g } else { 2 * (2 * g + b - 1) };
+    (n > 0).then_some(n)
 }

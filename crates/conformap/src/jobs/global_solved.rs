@@ -11,7 +11,7 @@ use crate::failure::Failure;
 use crate::pipeline::{Solved, TexCoords};
 use crate::report::{
     FactorizationSection, GlobalDetail, GlobalSection, MetricsExtra, MetricsSection, Sections,
-    SolverDetail, SolverSection, Sorted, StageTimings, ZeroEntry,
+    SolverDetail, SolverSection, Sorted, StageTimings, WrittenMesh, ZeroEntry,
 };
 
 /// What `global` returns for the map `map` of `mesh` (the input, whose faces the layout's
@@ -57,7 +57,8 @@ pub(crate) fn map_solved(
         Ok(Solved {
             picture_domain: None,
             method: format!("holomorphic-1-form-{}", conjugate_name(map.conjugate)),
-            summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros),
+            summary: summary(mesh, map, folds_at_zeros, folds_outside_zeros)
+                + &refinement_note(mesh, map, seamed.mesh.as_ref()),
             strict_violation: (folds_outside_zeros > 0).then(|| {
                 format!("{folds_outside_zeros} folded faces lie outside the zeros' clusters")
             }),
@@ -127,6 +128,23 @@ fn summary(mesh: &TriMesh, map: &GlobalMap, at_zeros: usize, outside: usize) -> 
         map.metrics.angle_distortion_away_from_zeros_deg.mean,
         map.metrics.uniformity_energy,
     )
+}
+
+/// What the summary adds when the outputs are written on a refinement of the input
+/// (boundary chords split by the double covering): the written counts.
+fn refinement_note(mesh: &TriMesh, map: &GlobalMap, written: Option<&TriMesh>) -> String {
+    match written {
+        Some(w) => format!(
+            "; written on a refinement of the input ({} boundary chord(s) split): {} \
+             vertices, {} faces, the input's {} vertices first (`conformap metrics` and \
+             `render` read it as it is)",
+            map.split_edges,
+            w.num_vertices(),
+            w.num_faces(),
+            mesh.num_vertices()
+        ),
+        None => String::new(),
+    }
 }
 
 /// The chosen form, in words: the objective and what it reached.
@@ -207,5 +225,10 @@ fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> GlobalSection {
         uv_scale: seamed.scale,
         uv_is: "vt = (layout − uv_offset) · uv_scale: the layout fitted into the unit square",
         timings_ms: map.timings_ms,
+        written_mesh: seamed.mesh.as_ref().map(|w| WrittenMesh {
+            vertices: w.num_vertices(),
+            faces: w.num_faces(),
+            is: "the refinement the outputs are written on (the input's vertices first)",
+        }),
     }
 }

@@ -9,7 +9,8 @@
 //!   texture coordinates are the input's: the two sides of a slit simply get different `vt`;
 //!   `--flat` gets the slit surface's fundamental domain.
 //! - the starting sphere map (closed genus 0, when no slit paid): written as `sphere`
-//!   writes it — one `vt` per vertex, the equirectangular projection of the sphere point;
+//!   writes it — one `vt` per face corner, the equirectangular projection of the sphere
+//!   point split along the seam meridian;
 //!   `--flat` the unit-sphere points; `--png` draws it as `sphere --png` does (the
 //!   checkerboard through the sphere map, the sphere coloured by angle distortion), not
 //!   the equirectangular texture as a flat map.
@@ -22,7 +23,7 @@
 
 use conformap_global::{topology_opt, BestLayout, TopologyOpt, TopologyOptOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use conformap_sphere::{equirectangular_uv, sphere_metrics};
+use conformap_sphere::sphere_metrics;
 
 use crate::failure::Failure;
 use crate::jobs::global_solved::map_solved;
@@ -136,11 +137,8 @@ fn sphere_solved(input: &Input, points: &[[f64; 3]], r: &TopologyOpt) -> Result<
     Ok(Solved {
         picture_domain: Some(PictureDomain::Sphere),
         method: "sphere+mobius-uniform".to_owned(),
-        uv: points
-            .iter()
-            .map(|&p| equirectangular_uv(p))
-            .collect::<Vec<_>>()
-            .into(),
+        uv: crate::jobs::sphere::sphere_tex_coords(mesh, points)
+            .map_err(|e| input.fail(e.into()))?,
         flat: (points.to_vec(), None),
         solver,
         param: None,

@@ -215,10 +215,12 @@ fn repair_preview(raw: &RawMesh) -> String {
     }
 }
 
-/// The repairs `--repair` would still apply to a valid mesh (only keeping the largest
-/// component can: a valid mesh has no duplicate, flipped or unreferenced element).
+/// The repairs `--repair` would still apply to a valid mesh: welding coincident vertices (a
+/// triangle soup) and keeping the largest component (a valid mesh has no duplicate,
+/// flipped or unreferenced element); the same code as the repair
+/// ([`crate::pipeline::input::weld_and_repair`]).
 pub fn available_repairs(mesh: &TriMesh) -> Vec<String> {
-    match repair(mesh.positions(), mesh.faces(), &RepairOptions::DEFAULT) {
+    match crate::pipeline::input::weld_and_repair(mesh.positions(), mesh.faces()) {
         Ok(r) => r.log.actions(),
         Err(e) => vec![format!("cannot repair: {e}")],
     }

@@ -7,14 +7,17 @@ use std::time::Instant;
 use conformap_mesh::TriMesh;
 use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
 use conformap_sphere::{
-    equirectangular_uv, from_equirectangular_uv, mobius_peak_bytes, optimize_disk_mobius,
-    optimize_sphere_mobius, sphere_metrics, MobiusObjective, MobiusOptions, MobiusReport,
+    from_equirectangular_uv, mobius_peak_bytes, optimize_disk_mobius, optimize_sphere_mobius,
+    sphere_metrics, sphere_points_from_corner_uv, MobiusObjective, MobiusOptions, MobiusReport,
     EMPHASIZE_MAX_AREA_SCALE,
 };
 
 use crate::failure::Failure;
 use crate::jobs::param::{on_unit_sphere, read_map_file, read_region, MapFile};
-use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
+use crate::jobs::sphere::sphere_tex_coords;
+use crate::pipeline::{
+    disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved, TexCoords,
+};
 use crate::report::{
     ms_since, MetricsExtra, MetricsSection, MobiusDetail, ParamInfo, SolverDetail, SolverSection,
     StageTimings,
@@ -112,7 +115,7 @@ impl MobiusJob {
 
 /// The moved map of one domain, before it becomes a [`Solved`].
 struct Moved {
-    uv: Vec<[f64; 2]>,
+    uv: TexCoords,
     flat: Vec<[f64; 3]>,
     report: MobiusReport,
     metrics: MetricsSection,
@@ -234,6 +237,7 @@ impl MobiusJob {
                 ))
             }
         };
+        self.check_domain(mesh)?;
         let options = MobiusOptions::DEFAULT.with_max_area_scale(self.max_area_scale);
         let t = Instant::now();
         let moved = match self.domain {
@@ -254,7 +258,7 @@ impl MobiusJob {
         Ok(Solved {
             picture_domain: None,
             method: format!("newton-{}", mobius.objective),
-            uv: moved.uv.into(),
+            uv: moved.uv,
             flat: (moved.flat, None),
             solver,
             param: Some(ParamInfo {
@@ -273,6 +277,48 @@ impl MobiusJob {
                 .then(|| "the Möbius optimization did not converge".to_string()),
             summary,
         })
+    }
+
+    /// Refuses a domain the mesh has no map onto: a sphere map needs a closed genus-0
+    /// mesh, a disk map a mesh with boundary (bad input, exit 1, with the domain or the
+    /// command that fits).
+    fn check_domain(&self, mesh: &TriMesh) -> Result<(), Failure> {
+        let loops = mesh.boundary_loops().len();
+        let genus = mesh.genus();
+        let what = self.input.mesh.display();
+        let refuse = |msg: String, hint: &str| Err(Failure::BadInput(msg, Some(hint.into())));
+        match self.domain {
+            Domain::Sphere if loops > 0 => refuse(
+                format!(
+                    "{what} has {loops} boundary loop(s): --domain sphere moves the sphere map \
+                     of a closed genus-0 mesh, and a mesh with boundary has none"
+                ),
+                "a map of a mesh with boundary is a disk map: rerun with --domain disk",
+            ),
+            Domain::Sphere if genus != Some(0) => refuse(
+                format!(
+                    "{what} is {}: --domain sphere needs a closed genus-0 mesh",
+                    mesh.topology()
+                ),
+                "a closed surface with handles has no sphere map: `conformap global` maps it",
+            ),
+            Domain::Disk if loops == 0 && genus == Some(0) => refuse(
+                format!(
+                    "{what} is closed (no boundary loop): it has no disk map, so --domain disk \
+                     does not fit; its map is a sphere map"
+                ),
+                "rerun with --domain sphere (on the -o or --flat output of `conformap sphere`)",
+            ),
+            Domain::Disk if loops == 0 => refuse(
+                format!(
+                    "{what} is {}: it has no disk map, so --domain disk does not fit",
+                    mesh.topology()
+                ),
+                "`conformap global` maps closed surfaces with handles; the Möbius \
+                 optimization moves disk and sphere maps only",
+            ),
+            _ => Ok(()),
+        }
     }
 
     fn fail(&self, e: impl Into<Failure>) -> Failure {
@@ -304,7 +350,7 @@ impl MobiusJob {
             uniformity_energy_before: best.report.uniformity_before,
         });
         Ok(Moved {
-            uv: disk_uv(&best.map),
+            uv: disk_uv(&best.map).into(),
             flat: planar_points(&best.map),
             report: best.report,
             metrics,
@@ -321,11 +367,19 @@ impl MobiusJob {
         options: &MobiusOptions,
     ) -> Result<Moved, Failure> {
         let on_sphere = param.positions.iter().all(on_unit_sphere);
+        let corners = param
+            .corner_uv
+            .as_ref()
+            .and_then(|c| sphere_points_from_corner_uv(mesh, &c.texcoords, &c.faces));
         let (points, from): (Vec<[f64; 3]>, &'static str) = match (&param.uv, on_sphere) {
             (_, true) => (param.positions.clone(), "sphere positions"),
             (Some(uv), false) => (
                 uv.iter().map(|&t| from_equirectangular_uv(t)).collect(),
                 "equirectangular texture coordinates",
+            ),
+            (None, false) if corners.is_some() => (
+                corners.unwrap_or_default(),
+                "equirectangular texture coordinates per corner",
             ),
             (None, false) => {
                 return Err(Failure::BadInput(
@@ -348,7 +402,7 @@ impl MobiusJob {
             uniformity_energy_before: before.uniformity_energy,
         });
         Ok(Moved {
-            uv: best.points.iter().map(|&p| equirectangular_uv(p)).collect(),
+            uv: sphere_tex_coords(mesh, &best.points).map_err(|e| self.fail(e))?,
             flat: best.points,
             report: best.report,
             metrics,

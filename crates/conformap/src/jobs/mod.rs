@@ -7,6 +7,7 @@
 pub mod atlas;
 pub mod disk;
 pub mod disk_holes;
+pub mod disk_tiny;
 pub mod flatten;
 pub mod global;
 pub mod global_solved;
@@ -15,6 +16,8 @@ pub mod info;
 pub mod metrics;
 pub mod mobius;
 pub mod morph;
+mod morph_frames;
 pub mod param;
+pub mod param_match;
 pub mod render;
 pub mod sphere;

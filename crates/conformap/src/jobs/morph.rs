@@ -30,8 +30,9 @@ pub struct MorphJob {
     /// Number of frames (key surface k at frame round(k(N−1)/(K−1))).
     pub frames: usize,
     /// `OUT.glb` (S1 with one morph target per key surface and an animation of their
-    /// weights, one keyframe per frame at 24 frames per second) or `DIR/` (an existing
-    /// directory: `frame_0000.obj` …).
+    /// weights, one keyframe per frame at 24 frames per second) or `DIR/` (created when
+    /// missing: `frame_0000.obj` …; frame files of an earlier run this run did not write
+    /// are removed after the commit).
     pub output: PathBuf,
     /// Landmark weight λ of Eq. 34 (default: the library's `DEFAULT_LAMBDA`). Where
     /// Eq. 34 folds, the largest λ without a fold and a fold-free landmark warp bring the
@@ -127,7 +128,7 @@ impl MorphJob {
         match self.output.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("glb") => Ok(Target::Glb(self.output.clone())),
             _ => Err(Failure::Usage(format!(
-                "-o {}: write OUT.glb or an existing directory DIR/",
+                "-o {}: write OUT.glb or a directory DIR/ (created when missing)",
                 self.output.display()
             ))),
         }
@@ -183,6 +184,9 @@ impl MorphJob {
 fn run(args: &MorphJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let target = args.check_usage()?;
+    if let Target::Frames(_) = &target {
+        crate::jobs::morph_frames::create_frame_directory(&args.output)?;
+    }
     check_morph_outputs(args, &target)?;
     let t = Instant::now();
     let surfaces = read_surfaces(args)?;
@@ -203,8 +207,15 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         staged.json(path, &report)?;
     }
     staged.commit()?;
+    let mut messages = morph_messages(args, &report, ms_since(t_all));
+    if let Target::Frames(frames) = &target {
+        messages.extend(crate::jobs::morph_frames::remove_stale_frames(
+            &args.output,
+            frames,
+        ));
+    }
     Ok(Outcome {
-        messages: morph_messages(args, &report, ms_since(t_all)),
+        messages,
         ..Outcome::default()
     })
 }

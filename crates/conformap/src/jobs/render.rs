@@ -4,14 +4,16 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use conformap_mesh::TriMesh;
 use conformap_render::{
     angle_histogram, histogram_svg, render, ColorBy, MapCoords, RenderOptions, UvValues, View,
 };
+use conformap_sphere::sphere_points_from_corner_uv;
 use num_complex::Complex64;
 
-use crate::failure::render_failure;
-use crate::failure::Failure;
-use crate::jobs::param::{on_unit_sphere, read_map_file, MapFile, PlanarMap};
+use crate::choice::Choice;
+use crate::failure::{render_failure, Failure};
+use crate::jobs::param::{on_unit_sphere, read_measured_map, MapFile, MeasuredMap, PlanarMap};
 use crate::pipeline::{check_outputs, context, Outcome, Staged};
 use crate::report::ms_since;
 
@@ -203,15 +205,26 @@ impl Coords {
         }
     }
 
-    /// The map in `file` for `domain`; `closed_genus0` says how `auto` reads texture
-    /// coordinates.
-    fn from_file(file: MapFile, domain: ParamDomain, closed_genus0: bool) -> Self {
+    /// The map in `file` for `domain`; `closed_genus0` (the mesh, when it is closed and
+    /// genus 0) says how `auto` reads texture coordinates: per vertex as equirectangular,
+    /// per corner as equirectangular when every vertex's corners name one sphere point
+    /// (as `sphere -o` writes them), else as a seamed planar map (an atlas).
+    fn from_file(file: MapFile, domain: ParamDomain, closed_genus0: Option<&TriMesh>) -> Self {
         let on_sphere = file.positions.iter().all(on_unit_sphere);
+        let corner_points = match (closed_genus0, &file.corner_uv) {
+            (Some(mesh), Some(c)) if domain != ParamDomain::Plane && !on_sphere => {
+                sphere_points_from_corner_uv(mesh, &c.texcoords, &c.faces)
+            }
+            _ => None,
+        };
+        if let Some(points) = corner_points {
+            return Self::Sphere(points);
+        }
         let sphere = match domain {
             ParamDomain::Plane => false,
             ParamDomain::Sphere => true,
             ParamDomain::Auto => match (&file.uv, &file.corner_uv) {
-                (Some(_), _) => closed_genus0,
+                (Some(_), _) => closed_genus0.is_some(),
                 (None, Some(_)) => false,
                 (None, None) => on_sphere,
             },
@@ -252,13 +265,24 @@ impl Coords {
 fn run(args: &RenderJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let svg = args.svg_output()?;
+    if let Some(c) = args
+        .color
+        .filter(|&c| args.view == RenderView::Histogram && c != RenderColor::Angle)
+    {
+        return Err(Failure::Usage(format!(
+            "--color {} does not apply to --view histogram: the histogram is of the angle \
+             distortion; drop --color (or pass --color angle)",
+            c.name()
+        )));
+    }
     check_outputs(&[("-o", &args.output, false)], &[&args.mesh, &args.param])?;
     context::stage(format!("reading {}", args.mesh.display()));
     let loaded = conformap_io::read_mesh(&args.mesh)?;
-    let mesh = &loaded.mesh;
-    let file = read_map_file(&args.param, &args.mesh, mesh)?;
+    // a map carrying its own mesh (global's refinement at split chords) is drawn on it
+    let MeasuredMap { file, own_mesh } = read_measured_map(&args.param, &args.mesh, &loaded.mesh)?;
+    let mesh = own_mesh.as_ref().unwrap_or(&loaded.mesh);
     let closed_genus0 = mesh.boundary_loops().is_empty() && mesh.genus() == Some(0);
-    let coords = Coords::from_file(file, args.domain, closed_genus0);
+    let coords = Coords::from_file(file, args.domain, closed_genus0.then_some(mesh));
     let options = args.options();
     context::stage(format!("drawing {}", args.output.display()));
     let mut staged = Staged::new();

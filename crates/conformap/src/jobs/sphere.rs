@@ -5,12 +5,14 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 use conformap_sphere::{
-    equirectangular_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, sphere_peak_bytes,
-    MobiusObjective, MobiusOptions, SphereMetrics, SphereOptions,
+    equirectangular_corner_uv, optimize_sphere_mobius, sphere_map, sphere_metrics,
+    sphere_peak_bytes, MobiusObjective, MobiusOptions, SphereError, SphereMetrics, SphereOptions,
 };
 
 use crate::failure::Failure;
-use crate::pipeline::{Input, InputOptions, MapJob, OutputOptions, PictureDomain, Solved};
+use crate::pipeline::{
+    Input, InputOptions, MapJob, OutputOptions, PictureDomain, Solved, TexCoords,
+};
 use crate::report::{
     ms_since, MetricsExtra, MetricsSection, SolverDetail, SolverSection, SphereDetail, StageTimings,
 };
@@ -32,8 +34,10 @@ pub struct SphereJob {
     /// The mesh (closed, connected, genus 0) and how to read it.
     pub input: InputOptions,
     /// The outputs: `-o` holds the equirectangular projection of the sphere point,
-    /// u = (atan2(y, x) + π)/2π, v = (asin z + π/2)/π (faces straddling the meridian
-    /// u = 0 ≡ 1 wrap in the texture); `--flat` the unit-sphere points.
+    /// u = (atan2(y, x) + π)/2π, v = (asin z + π/2)/π, one `vt` per face corner, split
+    /// along the seam meridian (a face crossing it keeps its corners together, some `u` in
+    /// (1, 1.25): `REPEAT` wrapping) and with the poles treated (see
+    /// [`conformap_sphere::equirectangular_corner_uv`]); `--flat` the unit-sphere points.
     pub output: OutputOptions,
     /// Möbius normalization of the map.
     pub mobius: SphereMobius,
@@ -140,11 +144,7 @@ impl MapJob for SphereJob {
         Ok(Solved {
             picture_domain: None,
             method,
-            uv: points
-                .iter()
-                .map(|&p| equirectangular_uv(p))
-                .collect::<Vec<_>>()
-                .into(),
+            uv: sphere_tex_coords(mesh, &points).map_err(fail)?,
             flat: (points, None),
             solver,
             param: None,
@@ -161,6 +161,23 @@ impl MapJob for SphereJob {
             summary,
         })
     }
+}
+
+/// The texture coordinates `-o` gets for a sphere map (of `sphere`, `mobius --domain
+/// sphere` and `global --topology-opt`): the equirectangular texture, one `vt` per face
+/// corner ([`equirectangular_corner_uv`]).
+///
+/// # Errors
+/// A map of the wrong length or with a non-finite point.
+pub(crate) fn sphere_tex_coords(
+    mesh: &TriMesh,
+    points: &[[f64; 3]],
+) -> Result<TexCoords, SphereError> {
+    let t = equirectangular_corner_uv(mesh, points)?;
+    Ok(TexCoords::PerCorner(conformap_io::CornerUv {
+        texcoords: t.texcoords,
+        faces: t.faces,
+    }))
 }
 
 /// The summary line of a sphere map.

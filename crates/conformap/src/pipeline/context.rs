@@ -22,6 +22,11 @@ pub trait Watcher: Send + Sync {
     fn advanced(&self, done: usize, name: &str) {
         let _ = (done, name);
     }
+    /// Something the user should know that is neither progress nor the result (stale
+    /// staging files removed); a front end prints it on stderr.
+    fn notice(&self, message: &str) {
+        let _ = message;
+    }
     /// Runs `print` (a batch line going to stdout) so that it does not tear the display.
     fn suspend(&self, print: &mut dyn FnMut()) {
         print();
@@ -131,6 +136,13 @@ pub fn stage(message: impl Into<String>) {
             watcher.stage(&message.into());
         }
     });
+}
+
+/// Tells the thread's watcher something the user should know (no-op without one).
+pub fn notice(message: impl Into<String>) {
+    if let Some(watcher) = watcher() {
+        watcher.notice(&message.into());
+    }
 }
 
 /// The watcher of this thread's runs, if any.

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use conformap_io::{Format, RawMesh, SourceInfo};
+use conformap_io::{RawMesh, SourceInfo};
 use conformap_mesh::{RepairLog, RepairOptions, TriMesh};
 
 use crate::failure::{repair_failure, Failure};
@@ -39,7 +39,7 @@ impl Input {
 /// file places either way.
 pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
     if !repair {
-        let loaded = conformap_io::read_mesh(path)?;
+        let loaded = conformap_io::read_mesh(path).map_err(|e| refusal(path, e))?;
         return Ok(Input {
             mesh: loaded.mesh,
             source: loaded.source,
@@ -50,14 +50,55 @@ pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
     repair_input(conformap_io::read_raw_mesh(path)?)
 }
 
+/// The failure of reading `path` without `--repair`: when the mesh is non-manifold only
+/// because of coincident vertices (a duplicated vertex that splits a fan), the hint says
+/// that `--repair` welds them into a valid mesh (checked by running the repair,
+/// [`weld_and_repair`]) instead of "no automatic repair is safe".
+fn refusal(path: &Path, e: conformap_io::IoError) -> Failure {
+    use conformap_mesh::MeshError as M;
+    let non_manifold = matches!(
+        &e,
+        conformap_io::IoError::InvalidMesh {
+            source: M::NonManifoldVertex { .. } | M::NonManifoldEdge { .. },
+            ..
+        }
+    );
+    let failure = Failure::from(e);
+    if !non_manifold {
+        return failure;
+    }
+    let Ok(raw) = conformap_io::read_raw_mesh(path) else {
+        return failure;
+    };
+    let welded = match weld_and_repair(&raw.positions, &raw.faces) {
+        Ok(fixed) if fixed.log.coincident_welded > 0 => fixed,
+        _ => return failure,
+    };
+    if TriMesh::try_new(welded.positions, welded.faces).is_err() {
+        return failure;
+    }
+    match failure {
+        Failure::BadInput(message, _) => Failure::BadInput(
+            message,
+            Some(format!(
+                "rerun with --repair: it welds {} coincident vertex(es) (bit-identical \
+                 positions), which makes this a valid mesh (`conformap info --repair MESH` \
+                 describes the result)",
+                welded.log.coincident_welded
+            )),
+        ),
+        other => other,
+    }
+}
+
 /// Applies every repair of [`conformap_mesh::repair`] to `raw` and validates the result;
 /// errors name input elements and their file places.
 pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
     // an OBJ is welded as a glTF is on reading: bit-identical positions become one vertex
     // (a triangle soup, a seam-split export); the log then speaks of the file's vertices
-    let weld = (raw.source.format == Format::Obj)
-        .then(|| conformap_io::weld_coincident(&raw.positions, &raw.faces))
-        .filter(|w| w.merged() > 0);
+    // (a glTF is welded on reading already; [`weld_and_repair`] is the same steps)
+    let weld =
+        Some(conformap_io::weld_coincident(&raw.positions, &raw.faces)).filter(|w| w.merged() > 0);
     let file_lines = raw.source.vertex_lines.clone();
     if weld.is_some() {
         raw = raw.weld_coincident().0;
@@ -75,19 +116,7 @@ pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
         }
     };
     if let Some(w) = &weld {
-        let log = &mut fixed.log;
-        log.vertex_to_input = log
-            .vertex_to_input
-            .iter()
-            .map(|&c| w.first[c as usize] as u32)
-            .collect();
-        log.input_to_vertex = w
-            .map
-            .iter()
-            .map(|&c| log.input_to_vertex[c as usize])
-            .collect();
-        log.input_vertices = w.map.len();
-        log.coincident_welded = w.merged();
+        through_weld(&mut fixed.log, w);
     }
     raw.positions = Vec::new();
     raw.faces = Vec::new();
@@ -101,6 +130,43 @@ pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
         repairs: Some(log),
         path,
     })
+}
+
+/// `log` (of a repair of the welded mesh `w`) in the numbering of the mesh before the weld.
+fn through_weld(log: &mut RepairLog, w: &conformap_io::Welded) {
+    log.vertex_to_input = log
+        .vertex_to_input
+        .iter()
+        .map(|&c| w.first[c as usize] as u32)
+        .collect();
+    log.input_to_vertex = w
+        .map
+        .iter()
+        .map(|&c| log.input_to_vertex[c as usize])
+        .collect();
+    log.input_vertices = w.map.len();
+    log.coincident_welded = w.merged();
+}
+
+/// The repairs of `--repair` on a triangle list: bit-identical positions welded into one
+/// vertex (a triangle soup becomes a surface), then every repair of
+/// [`conformap_mesh::repair`]; the log speaks of the vertices given. The one code path of
+/// the repair's preview (`info`, the hints of refusals) and of the Python package's
+/// `repair`, as [`repair_input`] runs it on a file.
+///
+/// # Errors
+/// [`conformap_mesh::repair`]'s, about the welded mesh.
+pub fn weld_and_repair(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+) -> Result<conformap_mesh::Repaired, conformap_mesh::MeshError> {
+    let w = conformap_io::weld_coincident(positions, faces);
+    if w.merged() == 0 {
+        return conformap_mesh::repair(positions, faces, &RepairOptions::DEFAULT);
+    }
+    let mut fixed = conformap_mesh::repair(&w.positions, &w.faces, &RepairOptions::DEFAULT)?;
+    through_weld(&mut fixed.log, &w);
+    Ok(fixed)
 }
 
 /// The repaired → input vertex map as text, one 0-based input vertex per line.

@@ -90,14 +90,16 @@ impl MemoryCheck {
     }
 }
 
-/// `1.23 GiB`, `45.6 MiB`, `789 KiB`.
+/// `1.23 GiB`, `45.6 MiB`, `789 KiB`, `12 B` (below a KiB: never `0 KiB`).
 pub fn human_bytes(b: u64) -> String {
     let b = b as f64;
     if b >= 1073741824.0 {
         format!("{:.2} GiB", b / 1073741824.0)
     } else if b >= 1048576.0 {
         format!("{:.1} MiB", b / 1048576.0)
-    } else {
+    } else if b >= 1024.0 {
         format!("{:.0} KiB", b / 1024.0)
+    } else {
+        format!("{b} B")
     }
 }

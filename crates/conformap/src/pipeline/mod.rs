@@ -15,7 +15,9 @@ pub mod memory;
 pub mod options;
 pub mod outputs;
 pub mod pictures;
+pub mod quality;
 pub mod solved;
+pub mod staging;
 
 use std::path::Path;
 use std::time::Instant;
@@ -123,7 +125,11 @@ pub fn run_map(cmd: &dyn MapJob) -> Result<Outcome, Failure> {
     }
     if let Some(path) = &output.flat {
         let faces = solved.flat.1.as_deref().unwrap_or(mesh.faces());
-        staged.flat(path, &solved.flat.0, faces)?;
+        staged.flat(path, &solved.flat.0, faces, input.file_layout())?;
+    }
+    if let Some(path) = &output.quality {
+        let domain = solved.picture_domain.unwrap_or(cmd.picture_domain());
+        quality::stage_quality(&mut staged, path, mesh, &solved, domain)?;
     }
     if let Some(prefix) = &output.png {
         context::stage(format!("{}: drawing the pictures", mesh_path.display()));

@@ -59,6 +59,10 @@ pub struct OutputOptions {
     pub flat: Option<PathBuf>,
     /// Write a JSON report here.
     pub report: Option<PathBuf>,
+    /// Also write the map's quality at every vertex (angle distortion, area log ratio) as
+    /// a GIfTI data file (`.shape.gii`) that loads as an overlay on the input surface
+    /// ([`crate::pipeline::quality`]). Default: none.
+    pub quality: Option<PathBuf>,
     /// Also write pictures of the result: PREFIX_surface.png (the surface with a
     /// checkerboard through the map) and PREFIX_map.png (the map coloured by angle
     /// distortion), 1024 × 1024.
@@ -75,6 +79,7 @@ impl OutputOptions {
             output: output.into(),
             flat: None,
             report: None,
+            quality: None,
             png: None,
             strict: false,
         }
@@ -89,6 +94,12 @@ impl OutputOptions {
     /// Also writing the JSON report to `path`.
     pub fn with_report(mut self, path: impl Into<PathBuf>) -> Self {
         self.report = Some(path.into());
+        self
+    }
+
+    /// Also writing the per-vertex quality overlay to `path` (`.shape.gii`).
+    pub fn with_quality(mut self, path: impl Into<PathBuf>) -> Self {
+        self.quality = Some(path.into());
         self
     }
 

@@ -7,6 +7,7 @@
 //! hidden sibling of its target and renames them all into place at [`Staged::commit`]; a
 //! failure before the commit removes what was staged, so no output appears.
 
+use std::collections::{HashMap, HashSet};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -18,6 +19,7 @@ use serde::Serialize;
 
 use crate::failure::{render_failure, Failure};
 use crate::pipeline::options::{InputOptions, OutputOptions};
+use crate::pipeline::staging::{self, directory_of};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
@@ -48,6 +50,10 @@ pub fn check_command_outputs(
     }
     if let Some(p) = &output.report {
         outputs.push(("--report", p, false));
+    }
+    if let Some(p) = &output.quality {
+        check_overlay(p)?;
+        outputs.push(("--quality-overlay", p, false));
     }
     if let Some(p) = &input.vertex_map {
         outputs.push(("--vertex-map", p, false));
@@ -92,16 +98,35 @@ fn check_writable(flag: &str, path: &Path, format: Format) -> Result<(), Failure
     )))
 }
 
-/// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`.
+/// `--quality-overlay` names a GIfTI data file: a usage error (exit 2) before anything is
+/// read otherwise.
+fn check_overlay(path: &Path) -> Result<(), Failure> {
+    if Format::from_path(path).is_ok_and(|f| f == Format::Gifti) {
+        return Ok(());
+    }
+    Err(Failure::Usage(format!(
+        "--quality-overlay {}: the per-vertex quality is a GIfTI data file: name it \
+         .shape.gii (or .func.gii)",
+        path.display()
+    )))
+}
+
+/// Checks `outputs` (flag, path, is a mesh) against each other and against `inputs`, each
+/// path normalized once and each directory probed once (a morph's thousands of frames in
+/// one directory cost one probe), and removes from every output directory the staging
+/// files of runs that were killed ([`staging::remove_stale_staging`]; the watcher is told).
 pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Result<(), Failure> {
-    for (k, &(flag, path, mesh)) in outputs.iter().enumerate() {
+    let inputs: Vec<(PathBuf, &Path)> = inputs.iter().map(|i| (normalized(i), *i)).collect();
+    let mut seen: HashMap<PathBuf, &str> = HashMap::with_capacity(outputs.len());
+    let mut directories: HashSet<PathBuf> = HashSet::new();
+    for &(flag, path, mesh) in outputs {
         if mesh {
             let format =
                 Format::from_path(path).map_err(|e| Failure::Usage(format!("{flag}: {e}")))?;
             check_writable(flag, path, format)?;
         }
         let key = normalized(path);
-        if let Some(input) = inputs.iter().find(|i| normalized(i) == key) {
+        if let Some((_, input)) = inputs.iter().find(|(k, _)| *k == key) {
             return Err(Failure::Usage(format!(
                 "{flag} {} names the input file {}: it would be overwritten; write the \
                  output elsewhere",
@@ -109,15 +134,33 @@ pub fn check_outputs(outputs: &[(&str, &Path, bool)], inputs: &[&Path]) -> Resul
                 input.display()
             )));
         }
-        if let Some(&(other, _, _)) = outputs[..k].iter().find(|o| normalized(o.1) == key) {
+        let dir = key.parent().map(Path::to_path_buf).unwrap_or_default();
+        if let Some(other) = seen.insert(key, flag) {
             return Err(Failure::Usage(format!(
                 "{other} and {flag} both name {}: one output would overwrite the other",
                 path.display()
             )));
         }
-        check_directory(path)?;
+        if directories.insert(dir) {
+            check_directory(path)?;
+            remove_stale(path);
+        }
     }
     Ok(())
+}
+
+/// Removes the stale staging files in the directory of `path` and tells the watcher.
+fn remove_stale(path: &Path) {
+    let removed = staging::remove_stale_staging(&directory_of(path));
+    if removed.is_empty() {
+        return;
+    }
+    let names: Vec<String> = removed.iter().map(|p| p.display().to_string()).collect();
+    crate::pipeline::context::notice(format!(
+        "removed {} staging file(s) left by an interrupted earlier run: {}",
+        removed.len(),
+        names.join(", ")
+    ));
 }
 
 /// `path` made absolute, its directory resolved through links where it exists.
@@ -134,6 +177,17 @@ fn normalized(path: &Path) -> PathBuf {
 /// The directory of `path` exists and accepts a new file.
 fn check_directory(path: &Path) -> Result<(), Failure> {
     let dir = directory_of(path);
+    // a file where a directory is expected (`-o file.obj/x.obj`): say so
+    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+        return Err(Failure::BadInput(
+            format!(
+                "cannot write {}: {} is a file, not a directory",
+                path.display(),
+                file.display()
+            ),
+            Some("write the output into a directory (check the -o path)".to_string()),
+        ));
+    }
     if !dir.is_dir() {
         return Err(Failure::BadInput(
             format!(
@@ -161,13 +215,6 @@ fn check_directory(path: &Path) -> Result<(), Failure> {
     }
 }
 
-fn directory_of(path: &Path) -> PathBuf {
-    path.parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
-        .to_path_buf()
-}
-
 /// Outputs written beside their targets, renamed into place together by [`Staged::commit`]
 /// (dropped uncommitted, they are removed).
 #[derive(Debug, Default)]
@@ -181,18 +228,10 @@ impl Staged {
         Self::default()
     }
 
-    /// A hidden sibling of `target` with the same extension (the writers pick the format
-    /// by extension).
+    /// A registered hidden sibling of `target` with the same extension (the writers pick
+    /// the format by extension): [`staging::stage_path`].
     fn stage_path(&mut self, target: &Path) -> PathBuf {
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let staged = directory_of(target).join(format!(
-            ".conformap-stage-{}-{n}-{name}",
-            std::process::id()
-        ));
+        let staged = staging::stage_path(target);
         self.files.push((staged.clone(), target.to_path_buf()));
         staged
     }
@@ -223,15 +262,30 @@ impl Staged {
             .map_err(|e| renamed(e.into(), &path, target))
     }
 
-    /// Stages points and triangles (see [`conformap_io::write_flat`]).
+    /// Stages points and triangles, keeping what `source` says about the input surface
+    /// when the output has its format (see [`conformap_io::write_flat_like`]).
     pub fn flat(
         &mut self,
         target: &Path,
         points: &[[f64; 3]],
         faces: &[[u32; 3]],
+        source: Option<&SourceInfo>,
     ) -> Result<(), Failure> {
         let path = self.stage_path(target);
-        conformap_io::write_flat(&path, points, faces).map_err(|e| renamed(e.into(), &path, target))
+        conformap_io::write_flat_like(&path, points, faces, source)
+            .map_err(|e| renamed(e.into(), &path, target))
+    }
+
+    /// Stages per-vertex data arrays as a GIfTI data file (see
+    /// [`conformap_io::write_vertex_data`]).
+    pub fn vertex_data(
+        &mut self,
+        target: &Path,
+        columns: &[(&str, &[f64])],
+    ) -> Result<(), Failure> {
+        let path = self.stage_path(target);
+        conformap_io::write_vertex_data(&path, columns)
+            .map_err(|e| renamed(e.into(), &path, target))
     }
 
     /// Stages OBJ frames of one set of triangles: `points(i)` gives the vertex positions
@@ -251,6 +305,9 @@ impl Staged {
             .zip(targets)
             .enumerate()
             .try_for_each(|(i, (path, target))| {
+                if staging::interrupted() {
+                    return Err(Failure::input("the run was interrupted"));
+                }
                 frames
                     .write(path, &points(i))
                     .map_err(|e| renamed(e.into(), path, target))
@@ -290,29 +347,22 @@ impl Staged {
         self.text(target, &(text + "\n"))
     }
 
-    /// Renames every staged file onto its target.
+    /// Renames every staged file onto its target (all of them while an interrupt waits,
+    /// or none after one).
     pub fn commit(mut self) -> Result<(), Failure> {
         let files = std::mem::take(&mut self.files);
-        for (k, (staged, target)) in files.iter().enumerate() {
-            if let Err(e) = std::fs::rename(staged, target) {
-                for (rest, _) in &files[k..] {
-                    let _ = std::fs::remove_file(rest);
-                }
-                return Err(Failure::input(format!(
-                    "cannot write {}: {e}",
-                    target.display()
-                )));
-            }
-        }
-        Ok(())
+        staging::rename_all(&files).map_err(|(k, e)| {
+            let rest: Vec<&Path> = files[k..].iter().map(|(s, _)| s.as_path()).collect();
+            staging::discard(&rest);
+            Failure::input(format!("cannot write {}: {e}", files[k].1.display()))
+        })
     }
 }
 
 impl Drop for Staged {
     fn drop(&mut self) {
-        for (staged, _) in &self.files {
-            let _ = std::fs::remove_file(staged);
-        }
+        let files: Vec<&Path> = self.files.iter().map(|(s, _)| s.as_path()).collect();
+        staging::discard(&files);
     }
 }
 

@@ -21,11 +21,12 @@ mod sorted;
 pub use metrics::{MapQuality, MetricsExtra, MetricsSection};
 pub use repairs::RepairsReport;
 pub use sections::{
-    CircleDomainSection, FactorizationSection, GlobalSection, Sections, TopologySection, ZeroEntry,
+    CircleDomainSection, FactorizationSection, GlobalSection, Sections, TopologySection,
+    WrittenMesh, ZeroEntry,
 };
 pub use solver::{
-    DoubleCoverDetail, GlobalDetail, MobiusDetail, SolverDetail, SolverSection, SphereDetail,
-    TopologyStepsDetail, UnfoldedSection,
+    DoubleCoverDetail, GlobalDetail, MobiusDetail, NoteDetail, SolverDetail, SolverSection,
+    SphereDetail, TopologyStepsDetail, UnfoldedSection,
 };
 pub use sorted::Sorted;
 

@@ -129,6 +129,21 @@ pub struct GlobalSection {
     pub uv_is: &'static str,
     /// The library's timings.
     pub timings_ms: GlobalTimings,
+    /// The refinement of the input the outputs are written on, only when there is one
+    /// (boundary chords split by the double covering): other reports keep their keys.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub written_mesh: Option<WrittenMesh>,
+}
+
+/// The `global.written_mesh` object: the refinement the outputs are written on.
+#[derive(Debug, Clone, Serialize)]
+pub struct WrittenMesh {
+    /// Its vertex count (the input's vertices first).
+    pub vertices: usize,
+    /// Its face count.
+    pub faces: usize,
+    /// What it is.
+    pub is: &'static str,
 }
 
 /// One zero of the form: the vertex nearest it and its multiplicity.

@@ -17,12 +17,25 @@ pub struct SolverSection {
     pub summary: SolverSummary,
     /// The rest of the solver's account, by command.
     pub detail: SolverDetail,
+    /// The options given that the map did not use, each with why (written as
+    /// `ignored_options` among the solver's own keys, only when there is one).
+    pub ignored_options: Vec<String>,
 }
 
 impl SolverSection {
     /// The section of `summary` and `detail`.
     pub fn new(summary: SolverSummary, detail: SolverDetail) -> Self {
-        Self { summary, detail }
+        Self {
+            summary,
+            detail,
+            ignored_options: Vec::new(),
+        }
+    }
+
+    /// With the options the map did not use (`ignored`, each with why).
+    pub fn with_ignored_options(mut self, ignored: Vec<String>) -> Self {
+        self.ignored_options = ignored;
+        self
     }
 }
 
@@ -48,6 +61,15 @@ pub enum SolverDetail {
     Global(GlobalDetail),
     /// The starting map returned by the topological optimization (no slit paid).
     TopologySteps(TopologyStepsDetail),
+    /// A direct map with a note on how it was made (a disk without interior vertices).
+    Note(NoteDetail),
+}
+
+/// A note on how a direct map was made.
+#[derive(Debug, Clone, Serialize)]
+pub struct NoteDetail {
+    /// The note.
+    pub note: &'static str,
 }
 
 /// The double cover's report, what its history means and the flip-free repair.
@@ -131,6 +153,10 @@ impl Serialize for SolverSection {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut detail = sorted_object(&self.detail).map_err(S::Error::custom)?;
         detail.retain(|k, _| !SUMMARY_KEYS.contains(&k.as_str()));
+        if !self.ignored_options.is_empty() {
+            let ignored = serde_json::to_value(&self.ignored_options).map_err(S::Error::custom)?;
+            detail.insert("ignored_options".to_string(), ignored);
+        }
         Written {
             summary: &self.summary,
             detail,
@@ -176,6 +202,28 @@ mod tests {
         ];
         assert!(own.windows(2).all(|w| at(w[0]) < at(w[1])), "{json}");
         assert!(at("residual") < at("best_iteration"), "{json}");
+    }
+
+    /// The ignored options are written among the solver's own keys, in their sorted place,
+    /// and not at all when there is none.
+    #[test]
+    fn ignored_options_are_written_in_sorted_place_only_when_some() {
+        let report = SolverReport {
+            method: "harmonic".into(),
+            ..SolverReport::default()
+        };
+        let plain = SolverSection::new(report.summary(), SolverDetail::Disk(report.clone()));
+        let json = serde_json::to_string(&plain).unwrap();
+        assert!(!json.contains("ignored_options"), "{json}");
+        let ignored = plain.with_ignored_options(vec!["--tol: harmonic does not iterate".into()]);
+        let json = serde_json::to_string(&ignored).unwrap();
+        let at = |key: &str| json.find(&format!("\"{key}\":")).unwrap();
+        assert!(at("factorizations") < at("ignored_options"), "{json}");
+        assert!(at("ignored_options") < at("method"), "{json}");
+        assert!(
+            json.contains(r#""ignored_options":["--tol: harmonic does not iterate"]"#),
+            "{json}"
+        );
     }
 
     /// A direct method with nothing of its own writes the summary alone.
