@@ -1,5 +1,5 @@
 //! `batch_one`: one input of `conformap batch`, run by the same Rust function
-//! ([`conformap::batch::run_one`]) with the command's options parsed by the CLI's own parser
+//! ([`conformap::batch::one::run_one`]) with the command's options parsed by the CLI's own parser
 //! ([`conformap_cli::cli::batch_job`]), so a cohort distributed over a cluster writes the
 //! outputs and JSON lines `conformap batch` would.
 
@@ -84,7 +84,7 @@ pub fn batch_one<'py>(
     let line = py
         .detach(|| {
             let job = conformap_cli::cli::batch_job(&args)?;
-            conformap::batch::run_one(&job, &path)
+            conformap::batch::one::run_one(&job, &path)
         })
         .map_err(to_py)?;
     to_py_json(py, &line)

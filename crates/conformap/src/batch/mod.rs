@@ -36,9 +36,8 @@ use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, Out
 use crate::report::ms_since;
 
 pub mod inputs;
-mod one;
-
-pub use one::run_one;
+/// One input of a batch on its own ([`one::run_one`]: the Python package's `batch_one`).
+pub mod one;
 
 crate::choice! {
     /// The map command a batch runs.
