@@ -148,7 +148,10 @@ fn metrics_measures_sphere_maps_on_the_sphere() {
         assert!(mean > 0.0 && mean < 3.2, "{mean}");
         assert!(q["radius_residual_max"].as_f64().unwrap() < 1e-9);
     }
-    assert!(means[0] < 3.0 && (means[1] - means[0]).abs() < 0.2, "{means:?}");
+    assert!(
+        means[0] < 3.0 && (means[1] - means[0]).abs() < 0.2,
+        "{means:?}"
+    );
     let text = conformap_ok(&["metrics", s(&spot), s(&flat)]);
     let text = String::from_utf8_lossy(&text.stdout).to_string();
     assert!(text.starts_with("sphere map of"), "{text}");

@@ -480,6 +480,10 @@ fn stage_record(
     }
 }
 
+/// What [`correct`] returns: the new points (or `None`), the number of vertices kept and
+/// the factorization time in milliseconds.
+type Correction = (Option<Vec<[f64; 3]>>, usize, f64);
+
 /// One correction: keep the `fraction` of vertices nearest the south pole (`from_south`) or
 /// the north pole, and re-solve the rest as a harmonic map in the chart centred on the other
 /// pole. Returns the new points (`None` when a kept value is not finite in the chart: the
@@ -498,7 +502,7 @@ fn correct(
     rank: &[u32],
     fraction: f64,
     from_south: bool,
-) -> Result<(Option<Vec<[f64; 3]>>, usize, f64), SphereError> {
+) -> Result<Correction, SphereError> {
     let n = points.len();
     let keep = ((fraction * n as f64).ceil() as usize).clamp(3.min(n - 1), n - 1);
     let mut order: Vec<u32> = (0..n as u32).collect();
