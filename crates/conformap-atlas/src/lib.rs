@@ -49,9 +49,11 @@ mod error;
 pub mod hull;
 mod pack;
 mod skyline;
+mod summary;
 
 pub use build::{build_atlas, split_components, Atlas, AtlasOptions, AtlasReport, ComponentChart};
 pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
 pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};
+pub use summary::atlas_peak_bytes;

@@ -25,7 +25,7 @@
 //! let job = args.to_job();
 //! assert_eq!(job.method.to_string(), "ccem-qn");
 //! let report = cli.command.run()?.report.expect("a map command reports");
-//! assert!(report.solver.converged);
+//! assert!(report.solver.summary.converged);
 //! # std::fs::remove_dir_all(&dir).unwrap();
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

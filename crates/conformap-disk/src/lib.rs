@@ -53,6 +53,7 @@ mod method;
 mod options;
 mod problem;
 mod report;
+mod summary;
 mod unfold;
 
 #[doc(hidden)]
@@ -78,4 +79,5 @@ pub use report::{
     BoundaryReport, CcemReport, CcemStages, DiskMap, LineSearchReport, SchurReport, SolverReport,
     StepRecord, Timings,
 };
+pub use summary::FLATTEN_CLOSURE_TOL;
 pub use unfold::{unfold_disk_map, Unfolded};

@@ -38,7 +38,7 @@
 
 mod error;
 mod forms;
-
+mod summary;
 mod topology_opt;
 
 pub use error::GlobalError;
@@ -48,6 +48,7 @@ pub use forms::{
     UniformSearch, Zero, ZeroAllocationReport, ZeroReport, ZeroTarget, DEFAULT_SEED,
     DEFAULT_STARTS, GRADIENT_TOL, MAX_NEWTON_ITERATIONS, MODULUS_MAX_STEPS, OPTIMUM_MATCH_REL,
 };
+pub use summary::{global_map_peak_bytes, topology_opt_peak_bytes};
 pub use topology_opt::{
     topology_opt, BestLayout, SlitRecord, TopologyOpt, TopologyOptOptions, TopologyStep,
     CENTRE_CANDIDATES, DEFAULT_EXTREME_AREA_FRACTION, DEFAULT_MAX_EXTREME_AREA_RATIO,

@@ -14,7 +14,7 @@ use crate::gltffile::encode_gltf;
 use crate::loaded::{Format, LoadedMesh, SourceInfo, NO_VERTEX};
 use crate::objfile::{encode_obj, encode_obj_with_corner_uv, encode_obj_with_uv};
 use crate::plyfile::{encode_ply, PlyUv};
-use crate::raw::{read_raw_mesh, read_raw_mesh_from_bytes};
+use crate::read::{read_raw_mesh, read_raw_mesh_from_bytes};
 
 /// Reads a mesh from an `.obj`, `.gltf`, `.glb`, `.ply`, `.stl`, `.off` or `.gii` file or
 /// a FreeSurfer surface (chosen by extension; a file whose extension names no format, such

@@ -65,9 +65,12 @@ mod gifti;
 mod gltffile;
 mod loaded;
 mod objfile;
+mod off_keyword;
 mod offfile;
+mod origins;
 mod plyfile;
 mod raw;
+mod read;
 mod stlfile;
 
 pub use api::{
@@ -81,16 +84,10 @@ pub use frames::ObjFrames;
 pub use gltffile::{encode_morph_glb, write_morph_glb, MorphGlb};
 pub use loaded::{
     CoordinateTransform, Format, LoadedMesh, SourceInfo, SurfaceMetadata, VertexText, NO_VERTEX,
+    READ_PEAK_BYTES_PER_FILE_BYTE,
 };
-pub use raw::{read_raw_mesh, read_raw_mesh_from_bytes, RawMesh};
-
-/// Peak memory of reading a mesh file, per byte of the file (the bytes, the text the OBJ
-/// parser holds, its and our index arrays). Measured: 590 MiB for the 84 MB OBJ of a
-/// 2M-face grid (7.4×). Callers use it to refuse, before reading, a file that would not fit.
-/// It bounds every format but gzip-compressed GIfTI, whose own factor is
-/// [`Format::read_peak_bytes_per_file_byte`]; every reader also checks the counts its
-/// header declares against the bytes present before allocating for them.
-pub const READ_PEAK_BYTES_PER_FILE_BYTE: u64 = 8;
+pub use raw::RawMesh;
+pub use read::{read_raw_mesh, read_raw_mesh_from_bytes};
 
 /// The README's example, compiled and run as a doctest.
 #[cfg(doctest)]

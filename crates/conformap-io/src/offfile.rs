@@ -9,28 +9,8 @@ use std::path::Path;
 use crate::cursor::{malformed, numbered_lines, parse_f64, quote, CORRUPT_HINT, TRUNCATED_HINT};
 use crate::error::{IoError, Place, UvProblem};
 use crate::loaded::{Format, SourceInfo};
+use crate::off_keyword::keyword_prefixes;
 use crate::raw::{ElementOrigins, RawMesh};
-
-/// Whether the first word of `text` is an OFF keyword (for [`Format::sniff`]).
-pub(crate) fn is_off_header(text: &[u8]) -> bool {
-    let word = text
-        .split(|b| b.is_ascii_whitespace())
-        .find(|w| !w.is_empty())
-        .unwrap_or_default();
-    keyword_prefixes(word).is_some()
-}
-
-/// The prefixes of an OFF keyword (`ST`, `C`, `N`, `4`, `n` before `OFF`), `None` if the
-/// word is not one.
-fn keyword_prefixes(word: &[u8]) -> Option<&[u8]> {
-    let prefix = word.strip_suffix(b"OFF")?;
-    let allowed = [&b"ST"[..], b"C", b"N", b"4", b"n"];
-    let mut rest = prefix;
-    for a in allowed {
-        rest = rest.strip_prefix(a).unwrap_or(rest);
-    }
-    rest.is_empty().then_some(prefix)
-}
 
 /// The non-comment words of each line, with its number; empty lines left out.
 fn content_lines(bytes: &[u8]) -> impl Iterator<Item = (usize, Vec<&[u8]>)> {

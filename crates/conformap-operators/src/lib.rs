@@ -32,6 +32,7 @@ mod mean_value;
 pub mod memory;
 pub mod primitives;
 mod quality;
+mod summary;
 
 pub use cholesky::{
     relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
@@ -56,3 +57,4 @@ pub use mean_value::mean_value_matrix;
 pub use memory::{available_memory, peak_rss_bytes, PeakMemory};
 pub use primitives::{planar, vec3};
 pub use quality::{mesh_quality, MeshQuality, FOLD_NORMAL_COS};
+pub use summary::SolverSummary;

@@ -1,5 +1,5 @@
 //! `batch_one`: one input of `conformap batch`, run by the same Rust function
-//! ([`conformap::batch::run_one`]), its job built from the keyword options by the map
+//! ([`conformap::batch::one::run_one`]), its job built from the keyword options by the map
 //! functions' own conversion ([`crate::keywords::template`]: `batch_one(..., "disk",
 //! **kw)` accepts what `disk_map(V, F, **kw)` accepts), so a cohort distributed over a
 //! cluster writes the outputs and JSON lines `conformap batch` would.
@@ -45,7 +45,7 @@ pub fn batch_one<'py>(
     job.png = png;
     job.max_memory = options::max_memory(max_memory)?;
     let line = py
-        .detach(|| conformap::batch::run_one(&job, &path))
+        .detach(|| conformap::batch::one::run_one(&job, &path))
         .map_err(to_py)?;
     to_py_json(py, &line)
 }

@@ -9,7 +9,6 @@ use conformap::jobs::param::PlanarMap;
 use num_complex::Complex64;
 use numpy::PyArray2;
 use pyo3::prelude::*;
-use serde_json::json;
 
 use crate::arrays::{faces, faces_array, mesh_input, points, to_array, to_py_json};
 use crate::errors::{bad_input, bad_input_hint, to_py};
@@ -25,11 +24,11 @@ pub fn info<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let input = mesh_input(V, F)?;
     let value = py.detach(|| {
-        let mut value = describe(&input.mesh, &input.path);
-        value["repairs_available"] = json!(available_repairs(&input.mesh));
-        value
+        let mut info = describe(&input.mesh, &input.path);
+        info.repairs_available = Some(available_repairs(&input.mesh));
+        serde_json::to_value(&info)
     });
-    to_py_json(py, &value)
+    to_py_json(py, &value.map_err(|e| bad_input(e.to_string()))?)
 }
 
 /// Quality of a planar map `param` ((n, 2), one point per vertex), as
@@ -57,9 +56,10 @@ pub fn metrics<'py>(
             .map(|p| Complex64::new(p[0], p[1]))
             .collect(),
     );
-    let value = py
+    let report = py
         .detach(|| metrics_report(&input.mesh, &input.path, &map, "<array>", "array (u, v)"))
         .map_err(to_py)?;
+    let value = serde_json::to_value(&report).map_err(|e| bad_input(e.to_string()))?;
     to_py_json(py, &value)
 }
 

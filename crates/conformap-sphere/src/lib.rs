@@ -62,6 +62,7 @@ mod error;
 mod mobius;
 mod sphere;
 mod stereo;
+mod summary;
 mod texture;
 
 #[doc(hidden)]
@@ -100,6 +101,7 @@ pub use stereo::{
     equirectangular_uv, from_equirectangular_uv, inverse_stereographic,
     inverse_stereographic_south, stereographic, stereographic_south,
 };
+pub use summary::{double_cover_peak_bytes, mobius_peak_bytes, sphere_peak_bytes};
 pub use texture::{
     equirectangular_corner_uv, sphere_points_from_corner_uv, SphereTexture, SPHERE_POLAR_READ,
     SPHERE_POLE_REL, SPHERE_UV_AGREE_TOL,

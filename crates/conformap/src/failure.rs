@@ -2,6 +2,9 @@
 //! to a failure (and so to an exit code and a hint): the one place where that is decided.
 
 use std::fmt;
+use std::path::Path;
+
+use conformap_render::RenderError;
 
 /// Why a job failed, and so its exit class: the message names the file and the element
 /// (line, vertex, face); [`Failure::hint`] says what to do.
@@ -289,6 +292,27 @@ impl From<conformap_metrics::MetricsError> for Failure {
     fn from(e: conformap_metrics::MetricsError) -> Self {
         Self::Numerical(e.to_string())
     }
+}
+
+/// The failure of a render error for output `path`: options are usage errors (2), a map
+/// that cannot be drawn is bad input (1).
+pub fn render_failure(e: RenderError, path: &Path) -> Failure {
+    let hint = match &e {
+        RenderError::NotOnSphere { .. } => {
+            "pass a sphere map (the --flat output of `sphere`), or --domain plane for a \
+             planar map"
+        }
+        RenderError::Collapsed => "check the map: every vertex has the same image",
+        RenderError::NonFiniteValue { .. } => "recompute the map: it holds NaN or infinity",
+        RenderError::InvalidOption { name, reason } => {
+            return Failure::Usage(format!("invalid option {}: {reason}", option_flag(name)))
+        }
+        _ => "check that the output's directory is writable",
+    };
+    Failure::BadInput(
+        format!("cannot draw {}: {e}", path.display()),
+        Some(hint.to_string()),
+    )
 }
 
 /// The command-line flag of a library option field (`max_sweeps` → `--max-iter`,

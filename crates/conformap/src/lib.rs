@@ -18,7 +18,7 @@
 //! let report = job.run()?.report.ok_or_else(|| Failure::input("no report"))?;
 //! assert_eq!(report.command, "disk");
 //! assert_eq!(report.method, "ccem-qn");
-//! assert!(report.solver.converged);
+//! assert!(report.solver.summary.converged);
 //! let (conformal_energy, mean_angle_deg, flipped) = report.metrics.headline();
 //! assert_eq!(flipped, 0);
 //! assert!(conformal_energy < 0.07, "E_C = {conformal_energy}"); // woody: 0.0615
@@ -42,8 +42,10 @@
 //!    [`InputOptions`], [`OutputOptions`] and its own options (documented defaults,
 //!    `new`, `with_*` builders); option enums declared with [`choice!`].
 //! 2. `impl MapJob for <Name>Job`: `name`, `work`, `input`, `output`, `peak_bytes` (asked
-//!    of the solver crate's memory model), `solve` (library calls, then the solver's result
-//!    → its report section in one function); `check_usage` / `other_inputs` where needed.
+//!    of the solver crate's memory model), `solve` (library calls, then the solver's
+//!    `summary()` and a typed [`report::SolverDetail`] for the `solver` object, typed
+//!    [`report::MetricsExtra`] and [`report::Sections`] for the rest); `check_usage` /
+//!    `other_inputs` where needed.
 //! 3. Re-export the job here; the CLI gets a clap struct with `to_job()` and a variant whose
 //!    arm runs it; the Python package a function turning arrays into the job and calling
 //!    [`run_in_memory`].

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use super::FlattenBoundary;
+use super::target::FlattenBoundary;
 use crate::DiskError;
 
 /// A boundary target as spelled on the command line, before its file is read.

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use super::boundary::{dirichlet_to_neumann, neumann_to_dirichlet, Curvatures, PinnedLaplacian};
 use super::curve::{edge_lengths, scaled_lengths};
-use super::FlattenBoundary;
+use super::target::FlattenBoundary;
 use crate::{DiskError, DiskProblem};
 
 /// How far the exterior angles of a target may sum from `2π` (radians) before the target

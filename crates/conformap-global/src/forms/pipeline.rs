@@ -24,8 +24,8 @@ use crate::forms::options::GlobalMapOptions;
 use crate::forms::periods::{
     bilinear_residual, harmonic_periods, period_matrix, reduce_modulus, ComplexCochain,
 };
-use crate::forms::quality::layout_metrics;
-use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch};
+use crate::forms::quality::{layout_metrics, LayoutMetrics};
+use crate::forms::zeros::{conformal_factor, find_zeros, vertex_stretch, ZeroReport};
 use crate::GlobalError;
 
 /// The global conformal parameterization of `mesh` by a holomorphic 1-form (Jin et al.
@@ -83,35 +83,14 @@ pub(crate) fn global_map_ranked(
     let t = Instant::now();
     let form_uniformity = objective.basis_uniformity.clone();
     let n = parts.basis.generators.len();
-    let form_index = options.form.unwrap_or_else(|| {
-        (0..n)
-            .min_by(|&a, &b| form_uniformity[a].total_cmp(&form_uniformity[b]))
-            .unwrap_or(0)
-    });
+    let form_index = options
+        .form
+        .unwrap_or_else(|| most_uniform_form(&form_uniformity));
     let form = scaled_form(&closed.mesh, &parts.basis, &harmonic, &conj, &objective)?;
     let laid = lay_out(&closed.mesh, &parts, &form);
     timings.layout = ms(t);
-    let t = Instant::now();
-    let zeros = find_zeros(&closed.mesh, &laid.layout.corner_uv, &laid.stretch);
-    finish_zeros(
-        &mut objective,
-        &closed.mesh,
-        &parts.basis.edges,
-        &form,
-        &zeros,
-        closed.input_vertices,
-    );
-    // `layout` is the wall time of the pair in `lay_out` (the stretch and conformal factor
-    // included), `zeros` the search for zeros alone
-    timings.zeros = ms(t);
-    let t = Instant::now();
-    let metrics = layout_metrics(
-        &closed.mesh,
-        &laid.layout.corner_uv,
-        closed.input_faces,
-        &zeros.in_zero_cluster,
-    );
-    timings.metrics = ms(t);
+    let (zeros, metrics) =
+        zeros_and_metrics(&closed, &parts, &form, &laid, &mut objective, &mut timings);
     timings.total = ms(t_all);
     let Parts {
         basis,
@@ -159,6 +138,46 @@ pub(crate) fn global_map_ranked(
         factor_nnz: harmonic.factor.nnz_factor,
         timings_ms: timings,
     })
+}
+
+/// The index of the most uniform basis form (the lowest uniformity energy).
+fn most_uniform_form(form_uniformity: &[f64]) -> usize {
+    (0..form_uniformity.len())
+        .min_by(|&a, &b| form_uniformity[a].total_cmp(&form_uniformity[b]))
+        .unwrap_or(0)
+}
+
+/// The zeros of the laid-out `form` (completing the objective's report of targeted zeros)
+/// and the layout's metrics. `timings.zeros` is the search for zeros alone (`layout` is the
+/// wall time of [`lay_out`], the stretch and conformal factor included).
+fn zeros_and_metrics(
+    closed: &ClosedSurface,
+    parts: &Parts,
+    form: &[Complex64],
+    laid: &Laid,
+    objective: &mut ObjectiveReport,
+    timings: &mut GlobalTimings,
+) -> (ZeroReport, LayoutMetrics) {
+    let t = Instant::now();
+    let zeros = find_zeros(&closed.mesh, &laid.layout.corner_uv, &laid.stretch);
+    finish_zeros(
+        objective,
+        &closed.mesh,
+        &parts.basis.edges,
+        form,
+        &zeros,
+        closed.input_vertices,
+    );
+    timings.zeros = ms(t);
+    let t = Instant::now();
+    let metrics = layout_metrics(
+        &closed.mesh,
+        &laid.layout.corner_uv,
+        closed.input_faces,
+        &zeros.in_zero_cluster,
+    );
+    timings.metrics = ms(t);
+    (zeros, metrics)
 }
 
 /// The genus of the input, or [`GlobalError::WrongTopology`] for a genus-0 surface with at

@@ -10,5 +10,4 @@ mod write;
 
 pub use morph::{encode_morph_glb, write_morph_glb, MorphGlb};
 pub(crate) use read::read_gltf_raw;
-pub(crate) use weld::{face_origin, vertex_origin, PrimRange};
 pub(crate) use write::encode_gltf;

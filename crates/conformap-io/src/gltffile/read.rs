@@ -7,9 +7,10 @@ use gltf::{Gltf, Semantic};
 
 use super::buffers::load_buffers;
 use super::container::{check_container, gltf1_error};
-use super::weld::{weld, PrimRange, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
+use super::weld::{weld, Soup, INSTANCING_LIMIT, SOUP_FLOOR};
 use crate::error::{IoError, GLTF_HINT};
 use crate::loaded::Format;
+use crate::origins::PrimRange;
 use crate::raw::RawMesh;
 
 type Matrix = [[f64; 4]; 4];

@@ -6,16 +6,8 @@ use crate::coincident::classes;
 use crate::corner_uv::CornerUv;
 use crate::error::{Origin, UvProblem};
 use crate::loaded::{Format, SourceInfo};
-use crate::raw::{GltfOrigins, RawMesh};
-
-/// One primitive's share of the concatenated file vertices and faces.
-#[derive(Debug, Clone)]
-pub(crate) struct PrimRange {
-    pub(crate) mesh: usize,
-    pub(crate) primitive: usize,
-    pub(crate) vertex_start: usize,
-    pub(crate) face_start: usize,
-}
+use crate::origins::{vertex_origin, GltfOrigins, PrimRange};
+use crate::raw::RawMesh;
 
 /// Node instancing may repeat a primitive, so the scene can be far larger than the file.
 /// The soup may hold at most `INSTANCING_LIMIT ×` the vertices the buffers could store
@@ -35,35 +27,6 @@ pub(crate) struct Soup {
     pub(crate) faces: Vec<[u32; 3]>,
     pub(crate) prims: Vec<PrimRange>,
     pub(crate) notes: Vec<String>,
-}
-
-fn prim_of(
-    prims: &[PrimRange],
-    pick: impl Fn(&PrimRange) -> usize,
-    k: usize,
-) -> Option<&PrimRange> {
-    let i = prims.partition_point(|p| pick(p) <= k);
-    prims.get(i.checked_sub(1)?)
-}
-
-/// The primitive vertex of file vertex `v`.
-pub(crate) fn vertex_origin(prims: &[PrimRange], v: usize) -> Option<Origin> {
-    let p = prim_of(prims, |p| p.vertex_start, v)?;
-    Some(Origin::GltfVertex {
-        mesh: p.mesh,
-        primitive: p.primitive,
-        vertex: v - p.vertex_start,
-    })
-}
-
-/// The primitive triangle of face `f`.
-pub(crate) fn face_origin(prims: &[PrimRange], f: usize) -> Option<Origin> {
-    let p = prim_of(prims, |p| p.face_start, f)?;
-    Some(Origin::GltfTriangle {
-        mesh: p.mesh,
-        primitive: p.primitive,
-        triangle: f - p.face_start,
-    })
 }
 
 /// Welds bit-identical positions of referenced file vertices (first occurrence wins) and

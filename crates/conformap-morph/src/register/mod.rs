@@ -30,6 +30,7 @@ use crate::MorphError;
 use anchor::Anchor;
 use conformap_operators::planar::polygon_area;
 use search::unfold;
+pub use solve::folded_faces;
 use solve::{folded_by, Solver};
 use system::LandmarkSystem;
 pub(crate) use warp::warp_landmarks;
@@ -359,19 +360,6 @@ fn pin_interior_landmarks(
             h[v as usize] = t;
         }
     }
-}
-
-/// Faces whose image under `map` has signed area of the wrong sign (against `sigma`, the
-/// orientation of the boundary loop) or zero.
-pub fn folded_faces(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> usize {
-    faces
-        .iter()
-        .filter(|f| {
-            let [a, b, c] = f.map(|v| map[v as usize]);
-            let area = ((b - a).conj() * (c - a)).im;
-            !(sigma * area > 0.0)
-        })
-        .count()
 }
 
 fn ms(t: Instant) -> f64 {

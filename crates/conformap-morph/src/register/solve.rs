@@ -105,7 +105,7 @@ impl Solver<'_, '_, '_> {
 }
 
 /// For every face: whether its image under `map` has signed area of the wrong sign
-/// (against `sigma`) or zero, as [`super::folded_faces`] counts them.
+/// (against `sigma`) or zero, as [`folded_faces`] counts them.
 pub(super) fn folded_by(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> Vec<bool> {
     faces
         .iter()
@@ -115,4 +115,17 @@ pub(super) fn folded_by(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> Ve
             !(sigma * area > 0.0)
         })
         .collect()
+}
+
+/// Faces whose image under `map` has signed area of the wrong sign (against `sigma`, the
+/// orientation of the boundary loop) or zero.
+pub fn folded_faces(faces: &[[u32; 3]], map: &[Complex64], sigma: f64) -> usize {
+    faces
+        .iter()
+        .filter(|f| {
+            let [a, b, c] = f.map(|v| map[v as usize]);
+            let area = ((b - a).conj() * (c - a)).im;
+            !(sigma * area > 0.0)
+        })
+        .count()
 }

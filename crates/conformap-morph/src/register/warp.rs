@@ -24,7 +24,7 @@ use conformap_operators::DenseCholesky;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::folded_faces;
+use super::solve::folded_faces;
 
 /// Support radius ρ of the warp's kernel, in units of the unit disk: `0.5`. The faces'
 /// landmarks lie 0.05–0.4 apart in the normalized disks; a support of a few landmark

@@ -36,9 +36,8 @@ use crate::pipeline::{check_outputs, run_map, InputOptions, MapJob, Outcome, Out
 use crate::report::ms_since;
 
 pub mod inputs;
-mod one;
-
-pub use one::run_one;
+/// One input of a batch on its own ([`one::run_one`]: the Python package's `batch_one`).
+pub mod one;
 
 crate::choice! {
     /// The map command a batch runs.
@@ -217,7 +216,7 @@ impl BatchJob {
         let mut outputs = vec![mesh_out, report];
         if self.png {
             let prefix = self.out_dir.join(&input.stem);
-            outputs.extend(crate::pipeline::pictures::png_paths(&prefix));
+            outputs.extend(crate::pipeline::outputs::png_paths(&prefix));
             output.png = Some(prefix);
         }
         Ok(Job {
@@ -442,7 +441,7 @@ fn run_job(job: &Job, skip_existing: bool, own_peak: bool) -> Value {
             "command": r.command,
             "method": r.method,
             "outputs": outputs,
-            "converged": r.solver.converged,
+            "converged": r.solver.summary.converged,
             "metrics": r.metrics,
             "timings_ms": r.timings_ms,
             "memory": r.memory,

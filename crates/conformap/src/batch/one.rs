@@ -55,7 +55,7 @@ impl Drop for Running {
 /// # let dir = std::env::temp_dir().join(format!("conformap-one-doc-{}", std::process::id()));
 /// let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/woody.obj");
 /// let batch = BatchJob::new(BatchTemplate::new(BatchCommand::Disk), &dir, vec![]);
-/// let line = conformap::batch::run_one(&batch, mesh.as_ref())?;
+/// let line = conformap::batch::one::run_one(&batch, mesh.as_ref())?;
 /// assert_eq!(line["status"], "ok");
 /// assert!(line["metrics"]["conformal_energy"].as_f64().is_some_and(|e| e < 0.07));
 /// assert!(dir.join("woody.obj").exists() && dir.join("woody.json").exists());

@@ -4,8 +4,7 @@
 
 use std::collections::HashMap;
 
-use conformap_atlas::{build_atlas, AtlasOptions, PackOptions};
-use conformap_disk::{flatten_peak_bytes, FlattenOptions};
+use conformap_atlas::{atlas_peak_bytes, build_atlas, AtlasOptions, PackOptions};
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
 use conformap_metrics::{corner_map_metrics, MetricsOptions};
@@ -13,7 +12,7 @@ use num_complex::Complex64;
 
 use crate::failure::Failure;
 use crate::pipeline::{Input, InputOptions, MapJob, OutputOptions, Solved, TexCoords};
-use crate::report::{MetricsSection, SolverSection, StageTimings};
+use crate::report::{MetricsSection, SolverDetail, SolverSection, StageTimings};
 
 /// Arguments of `conformap atlas`.
 #[non_exhaustive]
@@ -95,8 +94,7 @@ impl MapJob for AtlasJob {
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // the cone metric's factorization beside each chart's flattening
-        2 * flatten_peak_bytes(mesh, &FlattenOptions::DEFAULT)
+        atlas_peak_bytes(mesh)
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
@@ -114,14 +112,8 @@ impl MapJob for AtlasJob {
         let metrics = corner_map_metrics(mesh, &corner, &MetricsOptions::DEFAULT)?;
         let metrics_ms = t.elapsed().as_secs_f64() * 1e3;
         let r = &atlas.report;
-        let clean = r.flipped == 0 && r.overlap.covered_twice == 0;
-        let solver = SolverSection::new(
-            0,
-            clean,
-            Vec::new(),
-            r.seam_log_ratio_max,
-            &serde_json::json!({}),
-        );
+        let solver = SolverSection::new(r.summary(), SolverDetail::None);
+        let clean = solver.summary.converged;
         let uv = shared_corner_uv(mesh, &atlas.uv);
         let flat_points = uv.texcoords.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let flat_faces = uv.faces.clone();

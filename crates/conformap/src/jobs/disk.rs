@@ -8,16 +8,14 @@ use conformap_disk::{run_disk_method, DiskMethod, DiskOptions, DiskProblem};
 use conformap_mesh::{Topology, TriMesh};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_operators::Ordering as FactorOrdering;
-use conformap_operators::PeakMemory;
-use conformap_sphere::{double_cover_disk_map, SphereOptions};
-use serde_json::json;
+use conformap_sphere::{double_cover_disk_map, double_cover_peak_bytes, SphereOptions};
 
 use crate::failure::Failure;
-use crate::jobs::converged::sphere_map_converged;
 use crate::jobs::{disk_holes, disk_tiny};
 use crate::pipeline::{disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
 use crate::report::{
-    ms_since, FactorizationSection, MetricsSection, Sections, SolverSection, StageTimings,
+    ms_since, DoubleCoverDetail, FactorizationSection, MetricsSection, Sections, SolverDetail,
+    SolverSection, StageTimings, UnfoldedSection,
 };
 
 crate::choice! {
@@ -196,11 +194,7 @@ impl MapJob for DiskJob {
         match self.method.library() {
             _ if has_holes(mesh) => koebe_peak_bytes(mesh),
             Some(method) => method.peak_bytes(mesh),
-            // the double cover: twice the vertices and edges, every vertex factored
-            None => {
-                let (v, e) = (2 * mesh.num_vertices(), 2 * mesh.num_edges());
-                PeakMemory::laplacian(v, e, v).bytes()
-            }
+            None => double_cover_peak_bytes(mesh),
         }
     }
 
@@ -278,7 +272,7 @@ impl DiskJob {
         let ignored = self.ignored_options(mesh);
         if !ignored.is_empty() {
             solved.summary = format!("{}; ignored: {}", solved.summary, ignored.join("; "));
-            solved.solver = solved.solver.with("ignored_options", &ignored);
+            solved.solver = solved.solver.with_ignored_options(ignored);
         }
         solved
     }
@@ -328,13 +322,7 @@ impl DiskJob {
             method: s.method.clone(),
             uv: disk_uv(&result.map).into(),
             flat: (planar_points(&result.map), None),
-            solver: SolverSection::new(
-                s.iterations,
-                s.converged,
-                s.energy_history.clone(),
-                s.residual,
-                s,
-            ),
+            solver: SolverSection::new(s.summary(), SolverDetail::Disk(s.clone())),
             param: None,
             sections,
             metrics: MetricsSection::planar(metrics),
@@ -380,12 +368,12 @@ impl DiskJob {
             let u = unfold_disk_map(&problem, &map).map_err(fail)?;
             map = u.map.clone();
             metrics = planar_map_metrics(mesh, &map, &MetricsOptions::default())?;
-            unfolded = Some(json!({
-                "flipped_before": u.flipped_before,
-                "flipped_after": u.flipped_after,
-                "repaired_gaps": u.repaired_gaps,
-                "gap_floor": u.gap_floor,
-            }));
+            unfolded = Some(UnfoldedSection {
+                flipped_before: u.flipped_before,
+                flipped_after: u.flipped_after,
+                repaired_gaps: u.repaired_gaps,
+                gap_floor: u.gap_floor,
+            });
         }
         let r = &out.report;
         let summary = format!(
@@ -406,22 +394,14 @@ impl DiskJob {
             flat: (planar_points(&map), None),
             // a direct method: one stage per sphere-map stage; the residual is Angenent's
             solver: SolverSection::new(
-                r.sphere.stages.len().saturating_sub(1),
-                sphere_map_converged(&r.sphere),
-                r.sphere
-                    .stages
-                    .iter()
-                    .map(|s| s.mean_angle_distortion_deg)
-                    .collect(),
-                r.sphere.residual,
-                r,
-            )
-            .with(
-                "energy_history_is",
-                "mean chord-angle distortion (degrees) of the covering's sphere map after \
-                 each stage",
-            )
-            .with("unfolded", unfolded),
+                r.summary(),
+                SolverDetail::DoubleCover(DoubleCoverDetail {
+                    report: r.clone(),
+                    energy_history_is: "mean chord-angle distortion (degrees) of the \
+                                        covering's sphere map after each stage",
+                    unfolded,
+                }),
+            ),
             param: None,
             sections: Sections::default(),
             metrics: MetricsSection::planar(metrics),

@@ -18,7 +18,8 @@ use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use crate::failure::Failure;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
 use crate::report::{
-    ms_since, CircleDomainSection, MetricsSection, Sections, SolverSection, StageTimings,
+    ms_since, CircleDomainSection, MetricsSection, Sections, SolverDetail, SolverSection,
+    StageTimings,
 };
 
 /// The Koebe options of `disk`'s `outer`, `max_iter` (the sweeps) and `tol`.
@@ -48,14 +49,6 @@ pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
     let metrics_options = MetricsOptions::DEFAULT.with_outer_loop(r.outer_loop);
     let metrics = planar_map_metrics(mesh, &result.map, &metrics_options)?;
     let metrics_ms = ms_since(t);
-    let energies = r
-        .polish
-        .as_ref()
-        .map_or_else(Vec::new, |p| p.energy_history.clone());
-    let residual = result
-        .circles
-        .iter()
-        .fold(0.0f64, |a, c| a.max(c.residual_max));
     let summary = format!(
         "{} vertices, {} faces, {loops} boundary loops; disk with circular holes in {} \
          Koebe sweeps{}; worst circle residual {:.1e}, E_C = {:.6e}, mean angle distortion \
@@ -89,7 +82,7 @@ pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
         method: "koebe".to_string(),
         uv: disk_uv(&result.map).into(),
         flat: (planar_points(&result.map), None),
-        solver: SolverSection::new(r.sweeps, r.converged, energies, residual, r),
+        solver: SolverSection::new(result.summary(), SolverDetail::Koebe(r.clone())),
         param: None,
         sections,
         metrics: MetricsSection::planar(metrics),

@@ -10,13 +10,14 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
-use conformap_operators::corner_angles;
+use conformap_operators::{corner_angles, SolverSummary};
 use num_complex::Complex64;
-use serde_json::json;
 
 use crate::failure::Failure;
 use crate::pipeline::{disk_uv, planar_points, Input, Solved};
-use crate::report::{ms_since, MetricsSection, Sections, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, MetricsSection, NoteDetail, Sections, SolverDetail, SolverSection, StageTimings,
+};
 
 /// Whether `mesh` (a disk) has no interior vertex: every vertex on its one boundary loop.
 pub fn has_no_interior(mesh: &TriMesh) -> bool {
@@ -90,10 +91,12 @@ pub fn solve(input: &Input) -> Result<Solved, Failure> {
         method: "boundary-only".to_string(),
         uv: disk_uv(&map).into(),
         flat: (planar_points(&map), None),
-        solver: SolverSection::new(0, true, Vec::new(), 0.0, &json!({})).with(
-            "note",
-            "no interior vertex: each boundary edge gets twice its opposite angle of arc \
-             (exact for one triangle)",
+        solver: SolverSection::new(
+            SolverSummary::direct(true, 0.0),
+            SolverDetail::Note(NoteDetail {
+                note: "no interior vertex: each boundary edge gets twice its opposite angle \
+                       of arc (exact for one triangle)",
+            }),
         ),
         param: None,
         sections: Sections::default(),

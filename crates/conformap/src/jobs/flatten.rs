@@ -7,7 +7,7 @@ use conformap_mesh::TriMesh;
 
 use crate::failure::Failure;
 use crate::pipeline::{planar_points, Input, InputOptions, MapJob, OutputOptions, Solved};
-use crate::report::{MetricsSection, SolverSection, StageTimings};
+use crate::report::{MetricsSection, SolverDetail, SolverSection, StageTimings};
 
 crate::choice! {
     /// How the interior follows the boundary curve.
@@ -107,10 +107,6 @@ impl FlattenJob {
     }
 }
 
-/// A direct method converges when its closing step closed the curve: residual below
-/// `1e-9` of the perimeter (measured ≤ 6e-16 on every shared mesh).
-pub const FLATTEN_CLOSURE_TOL: f64 = 1e-9;
-
 impl MapJob for FlattenJob {
     fn name(&self) -> &'static str {
         "flatten"
@@ -177,14 +173,8 @@ impl MapJob for FlattenJob {
             .map_err(|e| input.fail(e.into()))?;
         let flat = flatten(mesh, &options).map_err(|e| input.fail(e.into()))?;
         let r = &flat.report;
-        let converged = r.closure_residual < FLATTEN_CLOSURE_TOL;
-        let solver = SolverSection::new(
-            0,
-            converged,
-            Vec::new(),
-            r.closure_residual,
-            &serde_json::json!({}),
-        );
+        let solver = SolverSection::new(r.summary(), SolverDetail::None);
+        let converged = solver.summary.converged;
         let sections = crate::report::Sections {
             flatten: Some(r.clone()),
             ..Default::default()

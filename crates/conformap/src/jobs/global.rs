@@ -11,10 +11,10 @@
 use std::path::{Path, PathBuf};
 
 use conformap_global::{
-    global_map, ConjugateMethod, GlobalMapOptions, Objective, TopologyOptOptions,
+    global_map, global_map_peak_bytes, topology_opt_peak_bytes, ConjugateMethod, GlobalMapOptions,
+    Objective, TopologyOptOptions,
 };
 use conformap_mesh::TriMesh;
-use conformap_operators::PeakMemory;
 
 use crate::failure::Failure;
 use crate::jobs::param::{read_region, region_face};
@@ -224,15 +224,11 @@ impl MapJob for GlobalJob {
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // one factorization of the Laplacian of the surface the forms live on: the input,
-        // or its double covering (twice the vertices and edges)
-        let copies = if mesh.boundary_loops().is_empty() && !self.topology_opt {
-            1
+        if self.topology_opt {
+            topology_opt_peak_bytes(mesh)
         } else {
-            2
-        };
-        let (v, e) = (copies * mesh.num_vertices(), copies * mesh.num_edges());
-        PeakMemory::laplacian(v, e, v).bytes()
+            global_map_peak_bytes(mesh)
+        }
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {

@@ -6,12 +6,13 @@ use conformap_global::{ConjugateMethod, GlobalMap, SeamedLayout};
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
 use conformap_metrics::{corner_map_metrics, MetricsOptions};
-use serde_json::json;
 
 use crate::failure::Failure;
-use crate::jobs::converged::global_map_converged;
 use crate::pipeline::{Solved, TexCoords};
-use crate::report::{FactorizationSection, MetricsSection, Sections, SolverSection, StageTimings};
+use crate::report::{
+    FactorizationSection, GlobalDetail, GlobalSection, MetricsExtra, MetricsSection, Sections,
+    SolverDetail, SolverSection, Sorted, StageTimings, WrittenMesh, ZeroEntry,
+};
 
 /// What `global` returns for the map `map` of `mesh` (the input, whose faces the layout's
 /// corners follow) and its seamed layout.
@@ -28,37 +29,30 @@ pub(crate) fn map_solved(
         let (folds_at_zeros, folds_outside_zeros) = map.input_folds();
         let m = &map.metrics;
         let (cf_min, cf_max) = map.conformal_factor_range();
-        let metrics = MetricsSection::planar(base)
-            .with("angle_distortion_all_corners_deg", m.angle_distortion_deg)
-            .with(
-                "angle_distortion_away_from_zeros_deg",
-                m.angle_distortion_away_from_zeros_deg,
-            )
-            .with("uniformity_energy", m.uniformity_energy)
-            .with("folds_at_zeros", folds_at_zeros)
-            .with("folds_outside_zeros", folds_outside_zeros)
-            .with("conformal_factor_range", [cf_min, cf_max]);
+        let metrics = MetricsSection::planar(base).and(MetricsExtra::Global {
+            angle_distortion_all_corners_deg: m.angle_distortion_deg,
+            angle_distortion_away_from_zeros_deg: m.angle_distortion_away_from_zeros_deg,
+            conformal_factor_range: [cf_min, cf_max],
+            folds_at_zeros,
+            folds_outside_zeros,
+            uniformity_energy: m.uniformity_energy,
+        });
         let sections = Sections {
             factorization: Some(FactorizationSection::Forms {
                 dim: map.factor_dim,
                 nnz_factor: map.factor_nnz,
             }),
-            global: Some(global_section(map, &seamed)),
+            global: Some(Sorted(global_section(map, &seamed))),
             ..Sections::default()
         };
         let solver = SolverSection::new(
-            0,
-            global_map_converged(map),
-            Vec::new(),
-            map.bilinear_residual,
-            &json!({}),
-        )
-        .with(
-            "residual_is",
-            "Riemann's bilinear relations of the period matrix (relative)",
-        )
-        .with("seam_residual", map.seam_residual)
-        .with("harmonic_residual", map.harmonic_residual);
+            map.summary(),
+            SolverDetail::Global(GlobalDetail {
+                harmonic_residual: map.harmonic_residual,
+                residual_is: "Riemann's bilinear relations of the period matrix (relative)",
+                seam_residual: map.seam_residual,
+            }),
+        );
         let tm = &map.timings_ms;
         Ok(Solved {
             picture_domain: None,
@@ -184,9 +178,9 @@ fn objective_summary(map: &GlobalMap) -> String {
 }
 
 /// The report's `global` section.
-fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> serde_json::Value {
+fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> GlobalSection {
     let n = 2 * map.surface_genus;
-    let periods: Vec<Vec<[f64; 2]>> = (0..n)
+    let period_matrix: Vec<Vec<[f64; 2]>> = (0..n)
         .map(|j| {
             (0..n)
                 .map(|k| map.period_matrix[j * n + k])
@@ -194,48 +188,47 @@ fn global_section(map: &GlobalMap, seamed: &SeamedLayout) -> serde_json::Value {
                 .collect()
         })
         .collect();
-    let zeros: Vec<_> = map
+    let zeros = map
         .input_zeros()
-        .map(|z| json!({"vertex": z.vertex, "multiplicity": z.multiplicity}))
+        .map(|z| ZeroEntry {
+            vertex: z.vertex,
+            multiplicity: z.multiplicity,
+        })
         .collect();
-    let mut section = json!({
-        "genus": map.genus,
-        "boundaries": map.boundaries,
-        "double_covered": map.double_covered,
-        "surface_genus": map.surface_genus,
-        "split_boundary_chords": map.split_edges,
-        "generators": map.generator_lengths.len(),
-        "generator_lengths": map.generator_lengths,
-        "form": map.form_index,
-        "form_uniformity": map.form_uniformity,
-        "objective": map.objective,
-        "conjugate": conjugate_name(map.conjugate),
-        "period_matrix": periods,
-        "period_matrix_layout": "rows: generators, columns: basis forms; [re, im]",
-        "bilinear_residual": map.bilinear_residual,
-        "bilinear_residual_gu_yau": map.bilinear_residual_gu_yau,
-        "complex_structure_defect": map.complex_structure_defect,
-        "tau": map.tau.map(|t| [t.re, t.im]),
-        "tau_gu_yau": map.tau_gu_yau.iter().map(|t| [t.re, t.im]).collect::<Vec<_>>(),
-        "zeros": zeros,
-        "zero_multiplicity_sum_surface": map.zeros.multiplicity_sum,
-        "negative_clusters": map.zeros.negative_clusters,
-        "winding_residual": map.zeros.winding_residual,
-        "seam_edges": map.seam_edges,
-        "seam_residual": map.seam_residual,
-        "layout_diagonal": map.layout_diagonal,
-        "uv_offset": seamed.offset,
-        "uv_scale": seamed.scale,
-        "uv_is": "vt = (layout − uv_offset) · uv_scale: the layout fitted into the unit square",
-        "timings_ms": map.timings_ms,
-    });
-    // only where the outputs are written on a refinement: other reports keep their keys
-    if let Some(w) = &seamed.mesh {
-        section["written_mesh"] = json!({
-            "vertices": w.num_vertices(),
-            "faces": w.num_faces(),
-            "is": "the refinement the outputs are written on (the input's vertices first)",
-        });
+    GlobalSection {
+        genus: map.genus,
+        boundaries: map.boundaries,
+        double_covered: map.double_covered,
+        surface_genus: map.surface_genus,
+        split_boundary_chords: map.split_edges,
+        generators: map.generator_lengths.len(),
+        generator_lengths: map.generator_lengths.clone(),
+        form: map.form_index,
+        form_uniformity: map.form_uniformity.clone(),
+        objective: map.objective.clone(),
+        conjugate: conjugate_name(map.conjugate),
+        period_matrix,
+        period_matrix_layout: "rows: generators, columns: basis forms; [re, im]",
+        bilinear_residual: map.bilinear_residual,
+        bilinear_residual_gu_yau: map.bilinear_residual_gu_yau,
+        complex_structure_defect: map.complex_structure_defect,
+        tau: map.tau.map(|t| [t.re, t.im]),
+        tau_gu_yau: map.tau_gu_yau.iter().map(|t| [t.re, t.im]).collect(),
+        zeros,
+        zero_multiplicity_sum_surface: map.zeros.multiplicity_sum,
+        negative_clusters: map.zeros.negative_clusters,
+        winding_residual: map.zeros.winding_residual,
+        seam_edges: map.seam_edges,
+        seam_residual: map.seam_residual,
+        layout_diagonal: map.layout_diagonal,
+        uv_offset: seamed.offset,
+        uv_scale: seamed.scale,
+        uv_is: "vt = (layout − uv_offset) · uv_scale: the layout fitted into the unit square",
+        timings_ms: map.timings_ms,
+        written_mesh: seamed.mesh.as_ref().map(|w| WrittenMesh {
+            vertices: w.num_vertices(),
+            faces: w.num_faces(),
+            is: "the refinement the outputs are written on (the input's vertices first)",
+        }),
     }
-    section
 }

@@ -24,13 +24,14 @@
 use conformap_global::{topology_opt, BestLayout, TopologyOpt, TopologyOptOptions};
 use conformap_metrics::{planar_map_metrics, MetricsOptions};
 use conformap_sphere::sphere_metrics;
-use serde_json::json;
 
 use crate::failure::Failure;
-use crate::jobs::converged::topology_opt_converged;
 use crate::jobs::global_solved::map_solved;
 use crate::pipeline::{disk_uv, planar_points, Input, PictureDomain, Solved};
-use crate::report::{MetricsSection, SolverSection, StageTimings};
+use crate::report::{
+    MetricsExtra, MetricsSection, SolverDetail, SolverSection, Sorted, StageTimings,
+    TopologySection, TopologyStepsDetail,
+};
 
 /// Runs the loop and packs its best layout as `global` (or `sphere`) would.
 pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solved, Failure> {
@@ -55,29 +56,7 @@ pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solve
             )))
         }
     };
-    let slits: Vec<&Vec<u32>> = r.steps[1..=r.best_step]
-        .iter()
-        .flat_map(|s| s.added.iter().map(|a| &a.vertices))
-        .collect();
-    solved.sections.topology_opt = Some(json!({
-            "returned": returned,
-            "returned_is": "sphere: the starting uniform-Möbius sphere map (no slit paid); \
-                            disk: the starting uniform-Möbius disk map (no slit paid); \
-                            input: the input's own most uniform form; slits: the global map \
-                            of the input cut along `slits`",
-            "best_step": r.best_step,
-            "start_energy": start.energy,
-            "best_energy": best.energy,
-            "ratio_to_start": best.energy / start.energy,
-            "slits": slits,
-            "slit_length": r.slit_length,
-            "slit_length_fraction": options.slit_length,
-            "max_slits": options.max_slits,
-            "patience": options.patience,
-            "stop": r.stop,
-            "steps": r.steps,
-            "total_ms": r.total_ms,
-    }));
+    solved.sections.topology_opt = Some(Sorted(topology_section(options, &r, returned)));
     solved.method = format!("topology-opt+{}", solved.method);
     solved.summary = format!(
         "topological optimization: {} step(s), best step {} with {} slit(s) (energy {:.3e}, \
@@ -95,20 +74,45 @@ pub(crate) fn solve(options: &TopologyOptOptions, input: &Input) -> Result<Solve
     Ok(solved)
 }
 
+/// The report's `topology_opt` section: every step, and which layout was `returned`.
+fn topology_section(
+    options: &TopologyOptOptions,
+    r: &TopologyOpt,
+    returned: &'static str,
+) -> TopologySection {
+    let (best, start) = (&r.steps[r.best_step], &r.steps[0]);
+    TopologySection {
+        returned,
+        returned_is: "sphere: the starting uniform-Möbius sphere map (no slit paid); \
+                      disk: the starting uniform-Möbius disk map (no slit paid); \
+                      input: the input's own most uniform form; slits: the global map \
+                      of the input cut along `slits`",
+        best_step: r.best_step,
+        start_energy: start.energy,
+        best_energy: best.energy,
+        ratio_to_start: best.energy / start.energy,
+        slits: r.steps[1..=r.best_step]
+            .iter()
+            .flat_map(|s| s.added.iter().map(|a| a.vertices.clone()))
+            .collect(),
+        slit_length: r.slit_length,
+        slit_length_fraction: options.slit_length,
+        max_slits: options.max_slits,
+        patience: options.patience,
+        stop: r.stop.clone(),
+        steps: r.steps.clone(),
+        total_ms: r.total_ms,
+    }
+}
+
 /// The solver section of a returned starting map: the uniformity energy of every step,
 /// step 0 being the `start` (sphere or disk) map.
 fn step_history(r: &TopologyOpt, start: &str) -> SolverSection {
-    let energies: Vec<f64> = r.steps.iter().map(|s| s.energy).collect();
     SolverSection::new(
-        r.steps.len() - 1,
-        topology_opt_converged(r),
-        energies,
-        0.0,
-        &json!({}),
-    )
-    .with(
-        "energy_history_is",
-        format!("uniformity energy of each step (step 0: the {start} map)"),
+        r.summary(),
+        SolverDetail::TopologySteps(TopologyStepsDetail {
+            energy_history_is: format!("uniformity energy of each step (step 0: the {start} map)"),
+        }),
     )
 }
 
@@ -172,7 +176,9 @@ fn disk_solved(
     );
     let strict_violation =
         (base.flipped_faces > 0).then(|| format!("{} faces flipped", base.flipped_faces));
-    let metrics = MetricsSection::planar(base).with("uniformity_energy", r.steps[0].energy);
+    let metrics = MetricsSection::planar(base).and(MetricsExtra::Uniformity {
+        uniformity_energy: r.steps[0].energy,
+    });
     Ok(Solved {
         picture_domain: None,
         method: "disk+mobius-uniform".to_owned(),

@@ -5,13 +5,81 @@ use std::path::PathBuf;
 use conformap_io::RawMesh;
 use conformap_mesh::{repair, RepairOptions, TriMesh};
 use conformap_operators::{mesh_quality, surface_area};
-use serde_json::json;
+use serde::Serialize;
 
 use std::fmt::Write;
 
 use crate::failure::{repair_failure, Failure};
 use crate::pipeline::{repair_input, Outcome};
-use crate::report::{to_value, RepairsReport};
+use crate::report::{RepairsReport, Sorted};
+
+/// Everything `info` reports about a valid mesh (`info --json` writes it with its keys
+/// sorted at every depth: [`Sorted`]).
+#[derive(Debug, Clone, Serialize)]
+#[non_exhaustive]
+pub struct MeshInfo {
+    /// Path as given.
+    pub path: String,
+    /// Always `true`: an invalid mesh is an error, not a description.
+    pub valid: bool,
+    /// Vertex count.
+    pub vertices: usize,
+    /// Face count.
+    pub faces: usize,
+    /// Edge count.
+    pub edges: usize,
+    /// `V − E + F`.
+    pub euler_characteristic: i64,
+    /// Genus (null for several components).
+    pub genus: Option<i64>,
+    /// Connected components.
+    pub components: usize,
+    /// Boundary loops.
+    pub boundaries: usize,
+    /// Vertices of each boundary loop.
+    pub boundary_loop_sizes: Vec<usize>,
+    /// The topology in words (`disk`, `sphere`, `genus 2`, …).
+    pub topology: String,
+    /// Diagonal of the bounding box.
+    pub bbox_diagonal: f64,
+    /// Total area.
+    pub surface_area: f64,
+    /// Smallest corner angle, degrees.
+    pub angle_min_deg: f64,
+    /// Largest corner angle, degrees.
+    pub angle_max_deg: f64,
+    /// Interior edges of negative cotangent weight (non-Delaunay).
+    pub negative_cotan_edges: usize,
+    /// Their share of the interior edges.
+    pub negative_cotan_edge_fraction: f64,
+    /// Edges whose two face normals are more than 154° apart.
+    pub folded_edges: usize,
+    /// Vertices at a bit-identical position to an earlier one, not shared by faces.
+    pub coincident_vertices: usize,
+    /// CEM's well-conditioning (Definition 1).
+    pub well_conditioned: WellConditionedInfo,
+    /// What `--repair` changed (with `--repair`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repairs: Option<RepairsReport>,
+    /// The repairs `--repair` would still apply (without `--repair`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repairs_available: Option<Vec<String>>,
+}
+
+/// CEM's well-conditioning of a mesh (Definition 1), as `info` reports it.
+#[derive(Debug, Clone, Serialize)]
+pub struct WellConditionedInfo {
+    /// Whether every condition holds.
+    pub holds: bool,
+    /// The mesh is connected.
+    pub connected: bool,
+    /// Its interior vertices are connected.
+    pub interior_connected: bool,
+    /// Its boundary is connected.
+    pub boundary_connected: bool,
+    /// Boundary vertices without an interior neighbour.
+    pub boundary_vertices_without_interior_neighbor: usize,
+}
 
 /// Arguments of `conformap info`.
 #[non_exhaustive]
@@ -54,13 +122,11 @@ impl InfoJob {
 /// (`repairs_available`, e.g. keeping the largest of several components).
 fn run(args: &InfoJob) -> Result<Outcome, Failure> {
     let raw = conformap_io::read_raw_mesh(&args.mesh)?;
-    let value = if args.repair {
+    let info = if args.repair {
         let input = repair_input(raw)?;
-        let mut value = describe(&input.mesh, &args.mesh);
-        if let Some(log) = &input.repairs {
-            value["repairs"] = to_value(&RepairsReport::new(log));
-        }
-        value
+        let mut info = describe(&input.mesh, &args.mesh);
+        info.repairs = input.repairs.map(RepairsReport);
+        info
     } else {
         let preview = repair_preview(&raw);
         let loaded = raw.validate().map_err(|e| {
@@ -71,14 +137,14 @@ fn run(args: &InfoJob) -> Result<Outcome, Failure> {
             };
             Failure::BadInput(f.to_string(), Some(hint))
         })?;
-        let mut value = describe(&loaded.mesh, &args.mesh);
-        value["repairs_available"] = json!(available_repairs(&loaded.mesh));
-        value
+        let mut info = describe(&loaded.mesh, &args.mesh);
+        info.repairs_available = Some(available_repairs(&loaded.mesh));
+        info
     };
     let text = if args.json {
-        serde_json::to_string_pretty(&value).unwrap_or_default()
+        serde_json::to_string_pretty(&Sorted(&info)).unwrap_or_default()
     } else {
-        text(&value)
+        text(&info)
     };
     Ok(Outcome {
         stdout: Some(text),
@@ -86,40 +152,43 @@ fn run(args: &InfoJob) -> Result<Outcome, Failure> {
     })
 }
 
-/// Everything `info` reports about a valid mesh, as JSON.
-pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> serde_json::Value {
+/// Everything `info` reports about a valid mesh (no repairs).
+pub fn describe(mesh: &TriMesh, path: &std::path::Path) -> MeshInfo {
     let loops: Vec<usize> = mesh.boundary_loops().iter().map(Vec::len).collect();
     let wc = mesh.well_conditioned();
     let q = mesh_quality(mesh);
-    json!({
-        "path": path.display().to_string(),
-        "valid": true,
-        "vertices": mesh.num_vertices(),
-        "faces": mesh.num_faces(),
-        "edges": mesh.num_edges(),
-        "euler_characteristic": mesh.euler_characteristic(),
-        "genus": mesh.genus(),
-        "components": mesh.num_components(),
-        "boundaries": loops.len(),
-        "boundary_loop_sizes": loops,
-        "topology": mesh.topology().to_string(),
-        "bbox_diagonal": mesh.bbox_diagonal(),
-        "surface_area": surface_area(mesh),
-        "angle_min_deg": q.angle_min_deg,
-        "angle_max_deg": q.angle_max_deg,
-        "negative_cotan_edges": q.negative_cotan_edges,
-        "negative_cotan_edge_fraction": q.negative_cotan_edge_fraction,
-        "folded_edges": q.folded_edges,
-        "coincident_vertices": conformap_io::coincident_vertices(mesh.positions()),
-        "well_conditioned": {
-            "holds": wc.holds(),
-            "connected": wc.connected,
-            "interior_connected": wc.interior_connected,
-            "boundary_connected": wc.boundary_connected,
-            "boundary_vertices_without_interior_neighbor":
-                wc.boundary_vertices_without_interior_neighbor.len(),
+    MeshInfo {
+        path: path.display().to_string(),
+        valid: true,
+        vertices: mesh.num_vertices(),
+        faces: mesh.num_faces(),
+        edges: mesh.num_edges(),
+        euler_characteristic: mesh.euler_characteristic(),
+        genus: mesh.genus(),
+        components: mesh.num_components(),
+        boundaries: loops.len(),
+        boundary_loop_sizes: loops,
+        topology: mesh.topology().to_string(),
+        bbox_diagonal: mesh.bbox_diagonal(),
+        surface_area: surface_area(mesh),
+        angle_min_deg: q.angle_min_deg,
+        angle_max_deg: q.angle_max_deg,
+        negative_cotan_edges: q.negative_cotan_edges,
+        negative_cotan_edge_fraction: q.negative_cotan_edge_fraction,
+        folded_edges: q.folded_edges,
+        coincident_vertices: conformap_io::coincident_vertices(mesh.positions()),
+        well_conditioned: WellConditionedInfo {
+            holds: wc.holds(),
+            connected: wc.connected,
+            interior_connected: wc.interior_connected,
+            boundary_connected: wc.boundary_connected,
+            boundary_vertices_without_interior_neighbor: wc
+                .boundary_vertices_without_interior_neighbor
+                .len(),
         },
-    })
+        repairs: None,
+        repairs_available: None,
+    }
 }
 
 /// One line saying what `--repair` would do to `raw` and whether the result would be valid.
@@ -157,92 +226,65 @@ pub fn available_repairs(mesh: &TriMesh) -> Vec<String> {
     }
 }
 
+/// `value` as compact JSON (`null` for a genus of several components).
+fn json_text(value: &impl Serialize) -> String {
+    serde_json::to_string(value).unwrap_or_default()
+}
+
 /// The text form of `info`'s description.
-fn text(v: &serde_json::Value) -> String {
+fn text(v: &MeshInfo) -> String {
     let mut out = String::new();
     let mut say = |line: &str| {
         let _ = writeln!(out, "{line}");
     };
-    let g = |k: &str| v.get(k).cloned().unwrap_or(serde_json::Value::Null);
-    say(&format!(
-        "mesh:        {}",
-        g("path").as_str().unwrap_or("")
-    ));
-    say(&format!(
-        "topology:    {}",
-        g("topology").as_str().unwrap_or("")
-    ));
-    say(&format!("vertices:    {}", g("vertices")));
-    say(&format!("faces:       {}", g("faces")));
-    say(&format!("edges:       {}", g("edges")));
-    say(&format!("euler char.: {}", g("euler_characteristic")));
-    say(&format!("genus:       {}", g("genus")));
-    say(&format!("components:  {}", g("components")));
+    say(&format!("mesh:        {}", v.path));
+    say(&format!("topology:    {}", v.topology));
+    say(&format!("vertices:    {}", v.vertices));
+    say(&format!("faces:       {}", v.faces));
+    say(&format!("edges:       {}", v.edges));
+    say(&format!("euler char.: {}", v.euler_characteristic));
+    say(&format!("genus:       {}", json_text(&v.genus)));
+    say(&format!("components:  {}", v.components));
     say(&format!(
         "boundaries:  {} (sizes {})",
-        g("boundaries"),
-        g("boundary_loop_sizes")
+        v.boundaries,
+        json_text(&v.boundary_loop_sizes)
     ));
-    say(&format!(
-        "bbox diag.:  {:.6e}",
-        g("bbox_diagonal").as_f64().unwrap_or(f64::NAN)
-    ));
-    say(&format!(
-        "area:        {:.6e}",
-        g("surface_area").as_f64().unwrap_or(f64::NAN)
-    ));
+    say(&format!("bbox diag.:  {:.6e}", v.bbox_diagonal));
+    say(&format!("area:        {:.6e}", v.surface_area));
     say(&format!(
         "angles:      {:.2}° .. {:.2}°",
-        g("angle_min_deg").as_f64().unwrap_or(f64::NAN),
-        g("angle_max_deg").as_f64().unwrap_or(f64::NAN)
+        v.angle_min_deg, v.angle_max_deg
     ));
     say(&format!(
         "non-Delaunay edges (negative cotangent weight): {} ({:.1}%)",
-        g("negative_cotan_edges"),
-        100.0 * g("negative_cotan_edge_fraction").as_f64().unwrap_or(0.0)
+        v.negative_cotan_edges,
+        100.0 * v.negative_cotan_edge_fraction
     ));
-    if g("coincident_vertices").as_u64().unwrap_or(0) > 0 {
+    if v.coincident_vertices > 0 {
         say(&format!(
             "coincident vertices: {} (bit-identical positions not shared by faces; --repair \
              welds them, as the glTF reader does)",
-            g("coincident_vertices")
+            v.coincident_vertices
         ));
     }
-    if g("folded_edges").as_u64().unwrap_or(0) > 0 {
+    if v.folded_edges > 0 {
         say(&format!(
             "geometric folds (adjacent normals more than 154° apart): {} edges; the maps' \
              flip-free guards handle them, a remesh removes them",
-            g("folded_edges")
+            v.folded_edges
         ));
     }
     say(&format!(
         "CEM well-conditioned (Definition 1): {}",
-        v["well_conditioned"]["holds"]
+        v.well_conditioned.holds
     ));
-    let list = |key: &str| -> Vec<String> {
-        v[key]
-            .as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|s| s.as_str().map(str::to_string))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
-    let available = list("repairs_available");
+    let available = v.repairs_available.as_deref().unwrap_or_default();
     if !available.is_empty() {
         say(&format!("with --repair: {}", available.join("; ")));
     }
-    if v.get("repairs").is_some() {
-        let applied = v["repairs"]["applied"]
-            .as_array()
-            .map(|a| {
-                a.iter()
-                    .filter_map(|s| s.as_str())
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            })
-            .unwrap_or_default();
+    if let Some(RepairsReport(log)) = &v.repairs {
+        let applied = log.actions().join("; ");
         let applied = if applied.is_empty() {
             "nothing".to_string()
         } else {

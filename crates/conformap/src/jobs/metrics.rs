@@ -6,12 +6,65 @@ use std::path::PathBuf;
 use std::fmt::Write;
 
 use conformap_metrics::{corner_map_metrics, planar_map_metrics, MetricsOptions};
-use serde_json::json;
+use serde::Serialize;
 
 use crate::failure::Failure;
 use crate::jobs::param::{read_measured_map, sphere_points, MeasuredMap, PlanarMap};
 use crate::pipeline::Outcome;
-use crate::report::InputInfo;
+use crate::report::{InputInfo, MapQuality, Sorted};
+
+/// The report of `conformap metrics --json` (written with its keys sorted at every depth:
+/// [`Sorted`]).
+#[derive(Debug, Clone, Serialize)]
+#[non_exhaustive]
+pub struct MetricsReport {
+    /// The version of conformap that wrote it.
+    pub conformap_version: &'static str,
+    /// Always `metrics`.
+    pub command: &'static str,
+    /// `sphere` for a sphere map (measured on the sphere); absent for a planar map.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub domain: Option<&'static str>,
+    /// The mesh.
+    pub input: InputInfo,
+    /// The map and where it was read from.
+    pub param: MetricsParam,
+    /// How good the map is: the planar or the sphere metrics.
+    pub metrics: MapQuality,
+}
+
+/// The `param` object of a metrics report.
+#[derive(Debug, Clone, Serialize)]
+pub struct MetricsParam {
+    /// Path as given (`<array>` from Python).
+    pub path: String,
+    /// Which data of the file held the map (`texture coordinates`, …).
+    pub map_from: String,
+    /// The map's own mesh, when the map file carries one refining the given mesh and the
+    /// map was measured on it (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub own_mesh: Option<OwnMesh>,
+}
+
+/// The `param.own_mesh` object: the mesh a map was measured on, and the mesh it refines.
+#[derive(Debug, Clone, Serialize)]
+pub struct OwnMesh {
+    /// Its vertex count.
+    pub vertices: usize,
+    /// Its face count.
+    pub faces: usize,
+    /// The given mesh it refines.
+    pub refines: MeshCounts,
+}
+
+/// The vertex and face counts of a mesh.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeshCounts {
+    /// Vertices.
+    pub vertices: usize,
+    /// Faces.
+    pub faces: usize,
+}
 
 /// Arguments of `conformap metrics`.
 #[non_exhaustive]
@@ -69,19 +122,24 @@ pub fn metrics_report(
     map: &PlanarMap,
     param: &str,
     source: &str,
-) -> Result<serde_json::Value, Failure> {
+) -> Result<MetricsReport, Failure> {
     let metrics = match map {
         PlanarMap::PerVertex(map) => planar_map_metrics(mesh, map, &MetricsOptions::default()),
         PlanarMap::PerCorner(map) => corner_map_metrics(mesh, map, &MetricsOptions::default()),
     }
     .map_err(Failure::input)?;
-    Ok(json!({
-        "conformap_version": env!("CARGO_PKG_VERSION"),
-        "command": "metrics",
-        "input": InputInfo::new(mesh_path, mesh),
-        "param": { "path": param, "map_from": source },
-        "metrics": metrics,
-    }))
+    Ok(MetricsReport {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: "metrics",
+        domain: None,
+        input: InputInfo::new(mesh_path, mesh),
+        param: MetricsParam {
+            path: param.to_string(),
+            map_from: source.to_string(),
+            own_mesh: None,
+        },
+        metrics: MapQuality::Planar(metrics),
+    })
 }
 
 /// The JSON of `conformap metrics --json` for the sphere map `points` of `mesh`: the
@@ -96,16 +154,20 @@ pub fn sphere_metrics_report(
     points: &[[f64; 3]],
     param: &str,
     source: &str,
-) -> Result<serde_json::Value, Failure> {
+) -> Result<MetricsReport, Failure> {
     let metrics = conformap_sphere::sphere_metrics(mesh, points).map_err(Failure::input)?;
-    Ok(json!({
-        "conformap_version": env!("CARGO_PKG_VERSION"),
-        "command": "metrics",
-        "domain": "sphere",
-        "input": InputInfo::new(mesh_path, mesh),
-        "param": { "path": param, "map_from": source },
-        "metrics": metrics,
-    }))
+    Ok(MetricsReport {
+        conformap_version: env!("CARGO_PKG_VERSION"),
+        command: "metrics",
+        domain: Some("sphere"),
+        input: InputInfo::new(mesh_path, mesh),
+        param: MetricsParam {
+            path: param.to_string(),
+            map_from: source.to_string(),
+            own_mesh: None,
+        },
+        metrics: MapQuality::Sphere(metrics),
+    })
 }
 
 /// The keys of the text output, planar and sphere, in order.
@@ -137,7 +199,7 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
     let measured = read_measured_map(&args.param, &args.mesh, &loaded.mesh)?;
     let mesh = measured.mesh(&loaded.mesh);
     let param = args.param.display().to_string();
-    let (mut value, source, keys) = match sphere_points(&measured.file, mesh) {
+    let (mut report, source, keys) = match sphere_points(&measured.file, mesh) {
         Some((points, source)) => (
             sphere_metrics_report(mesh, &args.mesh, &points, &param, source),
             source,
@@ -152,12 +214,12 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
             )
         }
     };
-    if let Ok(v) = &mut value {
-        if let Some(own) = own_mesh_note(&measured, &loaded.mesh) {
-            v["param"]["own_mesh"] = own;
-        }
+    if let Ok(r) = &mut report {
+        r.param.own_mesh = own_mesh_note(&measured, &loaded.mesh);
     }
-    let value = value.map_err(|f| f.in_file(&args.param))?;
+    let report = report.map_err(|f| f.in_file(&args.param))?;
+    // the report as a value with its keys sorted at every depth (as it is written)
+    let value = serde_json::to_value(Sorted(&report)).unwrap_or_default();
     let out = if args.json {
         serde_json::to_string_pretty(&value).unwrap_or_default()
     } else {
@@ -170,16 +232,16 @@ fn run(args: &MetricsJob) -> Result<Outcome, Failure> {
 }
 
 /// The report's `param.own_mesh` when the map was measured on its own mesh.
-fn own_mesh_note(
-    measured: &MeasuredMap,
-    given: &conformap_mesh::TriMesh,
-) -> Option<serde_json::Value> {
+fn own_mesh_note(measured: &MeasuredMap, given: &conformap_mesh::TriMesh) -> Option<OwnMesh> {
     let own = measured.own_mesh.as_ref()?;
-    Some(json!({
-        "vertices": own.num_vertices(),
-        "faces": own.num_faces(),
-        "refines": { "vertices": given.num_vertices(), "faces": given.num_faces() },
-    }))
+    Some(OwnMesh {
+        vertices: own.num_vertices(),
+        faces: own.num_faces(),
+        refines: MeshCounts {
+            vertices: given.num_vertices(),
+            faces: given.num_faces(),
+        },
+    })
 }
 
 /// The text output: what was measured, then one line per key.

@@ -6,10 +6,9 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 use conformap_metrics::{cross_ratio_distortion, planar_map_metrics, MetricsOptions};
-use conformap_operators::PeakMemory;
 use conformap_sphere::{
-    from_equirectangular_uv, optimize_disk_mobius, optimize_sphere_mobius, sphere_metrics,
-    sphere_points_from_corner_uv, MobiusObjective, MobiusOptions, MobiusReport,
+    from_equirectangular_uv, mobius_peak_bytes, optimize_disk_mobius, optimize_sphere_mobius,
+    sphere_metrics, sphere_points_from_corner_uv, MobiusObjective, MobiusOptions, MobiusReport,
     EMPHASIZE_MAX_AREA_SCALE,
 };
 
@@ -19,7 +18,10 @@ use crate::jobs::sphere::sphere_tex_coords;
 use crate::pipeline::{
     disk_uv, planar_points, Input, InputOptions, MapJob, OutputOptions, Solved, TexCoords,
 };
-use crate::report::{ms_since, MetricsSection, ParamInfo, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, MetricsExtra, MetricsSection, MobiusDetail, ParamInfo, SolverDetail, SolverSection,
+    StageTimings,
+};
 
 /// The default of [`MobiusJob::max_area_scale`]: the library's
 /// [`EMPHASIZE_MAX_AREA_SCALE`].
@@ -176,8 +178,7 @@ impl MapJob for MobiusJob {
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // no factorization: the mesh, the map, per-face areas
-        PeakMemory::laplacian(mesh.num_vertices(), mesh.num_edges(), 2).bytes()
+        mobius_peak_bytes(mesh)
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
@@ -245,26 +246,14 @@ impl MobiusJob {
         };
         let metrics_ms = (ms_since(t) - moved.report.time_ms).max(0.0);
         let mobius = moved.report;
-        let best = mobius
-            .starts
-            .get(mobius.best_start)
-            .map_or(0, |s| s.iterations);
         let solver = SolverSection::new(
-            best,
-            mobius.converged,
-            mobius.starts.iter().map(|s| s.energy).collect(),
-            mobius.gradient_norm,
-            &serde_json::json!({}),
-        )
-        .with(
-            "energy_history_is",
-            "the objective at the optimum of each start",
-        )
-        .with(
-            "residual_is",
-            "the objective's gradient norm at the optimum",
-        )
-        .with("mobius", &mobius);
+            mobius.summary(),
+            SolverDetail::Mobius(MobiusDetail {
+                energy_history_is: "the objective at the optimum of each start",
+                mobius: mobius.clone(),
+                residual_is: "the objective's gradient norm at the optimum",
+            }),
+        );
         let summary = summary(self, &mobius);
         Ok(Solved {
             picture_domain: None,
@@ -353,12 +342,13 @@ impl MobiusJob {
         // the map was checked by planar_map_metrics above
         let cr_before = cross_ratio_distortion(mesh, &map)?;
         let cr_after = cross_ratio_distortion(mesh, &best.map)?;
-        let metrics = MetricsSection::planar(after)
-            .with("uniformity_energy", best.report.uniformity_after)
-            .with("uniformity_energy_before", best.report.uniformity_before)
-            .with("angle_distortion_deg_before", before.angle_distortion_deg)
-            .with("cross_ratio_log", cr_after)
-            .with("cross_ratio_log_before", cr_before);
+        let metrics = MetricsSection::planar(after).and(MetricsExtra::MobiusDisk {
+            angle_distortion_deg_before: before.angle_distortion_deg,
+            cross_ratio_log: cr_after,
+            cross_ratio_log_before: cr_before,
+            uniformity_energy: best.report.uniformity_after,
+            uniformity_energy_before: best.report.uniformity_before,
+        });
         Ok(Moved {
             uv: disk_uv(&best.map).into(),
             flat: planar_points(&best.map),
@@ -406,10 +396,11 @@ impl MobiusJob {
             optimize_sphere_mobius(mesh, &points, objective, options).map_err(|e| self.fail(e))?;
         let before = sphere_metrics(mesh, &points).map_err(|e| self.fail(e))?;
         let after = sphere_metrics(mesh, &best.points).map_err(|e| self.fail(e))?;
-        let metrics = MetricsSection::sphere(after)
-            .with("uniformity_energy_before", before.uniformity_energy)
-            .with("angle_distortion_deg_before", before.angle_distortion_deg)
-            .with("cross_ratio_log_before", before.cross_ratio_log);
+        let metrics = MetricsSection::sphere(after).and(MetricsExtra::MobiusSphere {
+            angle_distortion_deg_before: before.angle_distortion_deg,
+            cross_ratio_log_before: before.cross_ratio_log,
+            uniformity_energy_before: before.uniformity_energy,
+        });
         Ok(Moved {
             uv: sphere_tex_coords(mesh, &best.points).map_err(|e| self.fail(e))?,
             flat: best.points,

@@ -5,7 +5,6 @@
 //! through key surfaces.
 
 pub mod atlas;
-pub mod converged;
 pub mod disk;
 pub mod disk_holes;
 pub mod disk_tiny;

@@ -12,9 +12,8 @@ use conformap_sphere::sphere_points_from_corner_uv;
 use num_complex::Complex64;
 
 use crate::choice::Choice;
-use crate::failure::Failure;
+use crate::failure::{render_failure, Failure};
 use crate::jobs::param::{on_unit_sphere, read_measured_map, MapFile, MeasuredMap, PlanarMap};
-use crate::pipeline::pictures::render_failure;
 use crate::pipeline::{check_outputs, context, Outcome, Staged};
 use crate::report::ms_since;
 

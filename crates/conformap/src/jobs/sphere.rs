@@ -4,18 +4,18 @@
 use std::time::Instant;
 
 use conformap_mesh::TriMesh;
-use conformap_operators::PeakMemory;
 use conformap_sphere::{
-    equirectangular_corner_uv, optimize_sphere_mobius, sphere_map, sphere_metrics, MobiusObjective,
-    MobiusOptions, SphereError, SphereMetrics, SphereOptions,
+    equirectangular_corner_uv, optimize_sphere_mobius, sphere_map, sphere_metrics,
+    sphere_peak_bytes, MobiusObjective, MobiusOptions, SphereError, SphereMetrics, SphereOptions,
 };
 
 use crate::failure::Failure;
-use crate::jobs::converged::sphere_map_converged;
 use crate::pipeline::{
     Input, InputOptions, MapJob, OutputOptions, PictureDomain, Solved, TexCoords,
 };
-use crate::report::{ms_since, MetricsSection, SolverSection, StageTimings};
+use crate::report::{
+    ms_since, MetricsExtra, MetricsSection, SolverDetail, SolverSection, SphereDetail, StageTimings,
+};
 
 crate::choice! {
     /// The Möbius normalization applied to the sphere map.
@@ -82,9 +82,7 @@ impl MapJob for SphereJob {
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        // Angenent's solve and the corrections factor (nearly) every vertex
-        let v = mesh.num_vertices();
-        PeakMemory::laplacian(v, mesh.num_edges(), v).bytes()
+        sphere_peak_bytes(mesh)
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
@@ -117,35 +115,31 @@ impl MapJob for SphereJob {
             SphereMobius::None => s.method.clone(),
             SphereMobius::Uniform => format!("{}+mobius-uniform", s.method),
         };
-        let mut metrics = MetricsSection::sphere(after.clone());
-        if let Some(m) = &mobius {
-            metrics = metrics
-                .with("uniformity_energy_before_mobius", m.uniformity_before)
-                .with(
-                    "angle_distortion_deg_before_mobius",
-                    before.angle_distortion_deg,
-                );
-        }
-        // a direct method: converged when Angenent's solve is accurate and (with a Möbius
-        // normalization) its optimization converged
-        let converged = sphere_map_converged(s) && mobius.as_ref().is_none_or(|m| m.converged);
+        let extra = match &mobius {
+            Some(m) => MetricsExtra::SphereMobius {
+                angle_distortion_deg_before_mobius: before.angle_distortion_deg,
+                uniformity_energy_before_mobius: m.uniformity_before,
+            },
+            None => MetricsExtra::None,
+        };
+        let metrics = MetricsSection::sphere(after.clone()).and(extra);
+        // converged as the sphere map (and its Möbius normalization, if any) decided it
+        let summary_of_solver = s.summary_with_mobius(mobius.as_ref());
+        let converged = summary_of_solver.converged;
         let solver = SolverSection::new(
-            s.stages.len().saturating_sub(1),
-            converged,
-            s.stages
-                .iter()
-                .map(|r| r.mean_angle_distortion_deg)
-                .collect(),
-            s.residual,
-            &serde_json::json!({}),
-        )
-        .with(
-            "energy_history_is",
-            "mean chord-angle distortion (degrees) after each stage",
-        )
-        .with("sphere", s)
-        .with("mobius", &mobius);
-        let summary = summary(mesh, s.corrections, mobius.is_some(), &after);
+            summary_of_solver,
+            SolverDetail::Sphere(SphereDetail {
+                energy_history_is: "mean chord-angle distortion (degrees) after each stage",
+                mobius,
+                sphere: s.clone(),
+            }),
+        );
+        let summary = summary(
+            mesh,
+            s.corrections,
+            matches!(self.mobius, SphereMobius::Uniform),
+            &after,
+        );
         let strict_violation = strict_violation(&after, converged, s.residual);
         Ok(Solved {
             picture_domain: None,

@@ -16,6 +16,7 @@ pub mod options;
 pub mod outputs;
 pub mod pictures;
 pub mod quality;
+pub mod solved;
 pub mod staging;
 
 use std::path::Path;
@@ -27,13 +28,10 @@ pub use input::{read_input, repair_input, Input};
 pub use memory::MemoryCheck;
 pub use options::{parse_size, InputOptions, OutputOptions};
 pub use outputs::{check_command_outputs, check_outputs, Staged};
-pub use pictures::PictureDomain;
+pub use solved::{PictureDomain, Solved, TexCoords};
 
 use crate::failure::Failure;
-use crate::report::{
-    ms_since, InputInfo, MetricsSection, ParamInfo, RepairsReport, Report, Sections, SolverSection,
-    StageTimings,
-};
+use crate::report::{ms_since, InputInfo, RepairsReport, Report, StageTimings};
 
 /// A command that maps a mesh and writes the map.
 pub trait MapJob {
@@ -71,61 +69,6 @@ pub trait MapJob {
     /// Where the map lands, for the `--png` pictures. Default: the plane.
     fn picture_domain(&self) -> PictureDomain {
         PictureDomain::Plane
-    }
-}
-
-/// What a command's solve returns to the pipeline.
-#[derive(Debug)]
-pub struct Solved {
-    /// The report's `method`.
-    pub method: String,
-    /// The texture coordinates written with the mesh to `-o`.
-    pub uv: TexCoords,
-    /// The `--flat` mesh: points, and faces when they are not the mesh's.
-    pub flat: (Vec<[f64; 3]>, Option<Vec<[u32; 3]>>),
-    /// The report's `solver` object.
-    pub solver: SolverSection,
-    /// The report's `param` object, for commands that read a map.
-    pub param: Option<ParamInfo>,
-    /// Top-level report sections of the command (`factorization`, `circle_domain`).
-    pub sections: Sections,
-    /// The report's `metrics` object.
-    pub metrics: MetricsSection,
-    /// Timings of the solve: `read` holds the reading of other inputs (a map file), which
-    /// the pipeline adds to its own; `write` and `total` are the pipeline's.
-    pub timings: StageTimings,
-    /// Why `--strict` refuses this result (did not converge, inverted faces), if it does.
-    pub strict_violation: Option<String>,
-    /// The summary line (without the mesh path and the total time, which the pipeline
-    /// adds).
-    pub summary: String,
-    /// Where this result lands for the `--png` pictures when it differs from the
-    /// command's [`MapJob::picture_domain`] (`global --topology-opt` returning the
-    /// starting sphere map: drawn as `sphere` draws it); `None`: the command's.
-    pub picture_domain: Option<PictureDomain>,
-}
-
-/// The texture coordinates a command writes to `-o`.
-#[derive(Debug)]
-pub enum TexCoords {
-    /// One per vertex of the input mesh (disk, holes, sphere, mobius).
-    PerVertex(Vec<[f64; 2]>),
-    /// Per face corner of the input mesh: a seamed map (`global`), written as `f v/vt`.
-    PerCorner(conformap_io::CornerUv),
-    /// Per face corner of a refinement of the input mesh the command had to make (a
-    /// double covering that split boundary chords): the refined mesh is written instead of
-    /// the input, and the report says so.
-    Refined {
-        /// The mesh written (its first vertices are the input's, in the input's order).
-        mesh: TriMesh,
-        /// Its seamed map.
-        uv: conformap_io::CornerUv,
-    },
-}
-
-impl From<Vec<[f64; 2]>> for TexCoords {
-    fn from(uv: Vec<[f64; 2]>) -> Self {
-        Self::PerVertex(uv)
     }
 }
 
@@ -270,7 +213,7 @@ pub fn solve_and_report(
         sections: std::mem::take(&mut solved.sections),
         metrics: solved.metrics.clone(),
         memory: memory.report(),
-        repairs: input.repairs.as_ref().map(RepairsReport::new),
+        repairs: input.repairs.clone().map(RepairsReport),
         timings_ms: timings,
     };
     Ok((solved, report))

@@ -8,6 +8,7 @@
 //! failure before the commit removes what was staged, so no output appears.
 
 use std::collections::{HashMap, HashSet};
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -16,11 +17,20 @@ use conformap_mesh::TriMesh;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::failure::Failure;
+use crate::failure::{render_failure, Failure};
 use crate::pipeline::options::{InputOptions, OutputOptions};
 use crate::pipeline::staging::{self, directory_of};
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// `PREFIX_surface.png` and `PREFIX_map.png`.
+pub fn png_paths(prefix: &Path) -> [PathBuf; 2] {
+    ["_surface.png", "_map.png"].map(|suffix| {
+        let mut name = OsString::from(prefix.as_os_str());
+        name.push(suffix);
+        PathBuf::from(name)
+    })
+}
 
 /// Checks the outputs of `output` and `input.vertex_map` against each other and against
 /// the inputs (`input.mesh` and `other_inputs`, e.g. a map file or a region).
@@ -48,10 +58,7 @@ pub fn check_command_outputs(
     if let Some(p) = &input.vertex_map {
         outputs.push(("--vertex-map", p, false));
     }
-    let pictures = output
-        .png
-        .as_deref()
-        .map(crate::pipeline::pictures::png_paths);
+    let pictures = output.png.as_deref().map(png_paths);
     for p in pictures.iter().flatten() {
         outputs.push(("--png", p, false));
     }
@@ -310,7 +317,9 @@ impl Staged {
     /// Stages a PNG picture.
     pub fn png(&mut self, target: &Path, image: &conformap_render::Image) -> Result<(), Failure> {
         let path = self.stage_path(target);
-        crate::pipeline::pictures::write_png(&path, image).map_err(|e| renamed(e, &path, target))
+        image
+            .save_png(&path)
+            .map_err(|e| renamed(render_failure(e, &path), &path, target))
     }
 
     /// Stages a GLB with morph targets and an animation (see

@@ -1,40 +1,18 @@
 //! `--png PREFIX`: the surface and map pictures of a command's result, staged with its
-//! other outputs (`PREFIX_surface.png`, `PREFIX_map.png`), and the mapping of render errors
-//! to failures (shared with `conformap render`).
+//! other outputs (`PREFIX_surface.png`, `PREFIX_map.png`).
 
-use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use conformap_mesh::TriMesh;
-use conformap_render::{
-    render, ColorBy, Image, MapCoords, RenderError, RenderOptions, UvValues, View,
-};
+use conformap_render::{render, ColorBy, MapCoords, RenderOptions, UvValues, View};
 use num_complex::Complex64;
 
-use crate::failure::Failure;
-use crate::pipeline::{Solved, Staged, TexCoords};
+use crate::failure::{render_failure, Failure};
+use crate::pipeline::outputs::{png_paths, Staged};
+use crate::pipeline::solved::{PictureDomain, Solved, TexCoords};
 
 /// Side of the `--png` pictures in pixels: 1024 (the render crate's default size).
 pub const PNG_SIZE: u32 = RenderOptions::DEFAULT.size;
-
-/// Where a command's map lands, for its pictures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PictureDomain {
-    /// A planar map: the texture coordinates of [`Solved::uv`] (an affine image of the map,
-    /// which the pictures fit to their frame anyway).
-    Plane,
-    /// A sphere map: the unit-sphere points of [`Solved::flat`].
-    Sphere,
-}
-
-/// `PREFIX_surface.png` and `PREFIX_map.png`.
-pub fn png_paths(prefix: &Path) -> [PathBuf; 2] {
-    ["_surface.png", "_map.png"].map(|suffix| {
-        let mut name = OsString::from(prefix.as_os_str());
-        name.push(suffix);
-        PathBuf::from(name)
-    })
-}
 
 /// Renders the surface (checkerboard) and map (angle distortion) pictures of `solved` and
 /// stages them under `prefix`.
@@ -79,33 +57,4 @@ pub fn stage_pictures(
         staged.png(path, &image)?;
     }
     Ok(())
-}
-
-/// The failure of a render error for output `path`: options are usage errors (2), a map
-/// that cannot be drawn is bad input (1).
-pub fn render_failure(e: RenderError, path: &Path) -> Failure {
-    let hint = match &e {
-        RenderError::NotOnSphere { .. } => {
-            "pass a sphere map (the --flat output of `sphere`), or --domain plane for a \
-             planar map"
-        }
-        RenderError::Collapsed => "check the map: every vertex has the same image",
-        RenderError::NonFiniteValue { .. } => "recompute the map: it holds NaN or infinity",
-        RenderError::InvalidOption { name, reason } => {
-            return Failure::Usage(format!(
-                "invalid option {}: {reason}",
-                crate::failure::option_flag(name)
-            ))
-        }
-        _ => "check that the output's directory is writable",
-    };
-    Failure::BadInput(
-        format!("cannot draw {}: {e}", path.display()),
-        Some(hint.to_string()),
-    )
-}
-
-/// Encodes `image` as PNG into `path` (used by [`Staged::png`]).
-pub(crate) fn write_png(path: &Path, image: &Image) -> Result<(), Failure> {
-    image.save_png(path).map_err(|e| render_failure(e, path))
 }

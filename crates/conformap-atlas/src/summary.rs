@@ -1,0 +1,24 @@
+//! The [`SolverSummary`] of an atlas (the atlas decides whether it is clean) and its
+//! peak-memory estimate.
+
+use conformap_disk::{flatten_peak_bytes, FlattenOptions};
+use conformap_mesh::TriMesh;
+use conformap_operators::SolverSummary;
+
+use crate::AtlasReport;
+
+impl AtlasReport {
+    /// A direct method (no iteration): converged when the atlas is clean (no flipped face,
+    /// no texel covered twice), its residual the largest seam length mismatch
+    /// [`Self::seam_log_ratio_max`].
+    pub fn summary(&self) -> SolverSummary {
+        let clean = self.flipped == 0 && self.overlap.covered_twice == 0;
+        SolverSummary::direct(clean, self.seam_log_ratio_max)
+    }
+}
+
+/// Estimated peak resident memory (bytes) of [`crate::build_atlas`] on `mesh`: the cone
+/// metric's factorization beside each chart's flattening.
+pub fn atlas_peak_bytes(mesh: &TriMesh) -> u64 {
+    2 * flatten_peak_bytes(mesh, &FlattenOptions::DEFAULT)
+}
