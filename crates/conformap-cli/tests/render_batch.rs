@@ -161,9 +161,12 @@ fn render_reads_spot_sphere_map_from_equirectangular_and_points() {
     let mesh = fixture("spot.obj");
     let o = conformap(&["sphere", s(&mesh), "-o", s(&uv), "--flat", s(&flat)]);
     assert!(o.status.success(), "{}", stderr(&o));
-    // `sphere -o` writes the texture per corner (split along the seam): read back to one
-    // unit-sphere point per vertex, as the --flat output's points are
-    for (param, what) in [(&uv, "unit-sphere points"), (&flat, "unit-sphere points")] {
+    // `sphere -o` writes the texture per corner (split along the seam), read back to one
+    // sphere point per vertex and named as what it is; --flat holds the points themselves
+    for (param, what) in [
+        (&uv, "equirectangular texture coordinates per corner"),
+        (&flat, "unit-sphere points"),
+    ] {
         let out = d.join("spot.png");
         let o = conformap(&["render", s(&mesh), s(param), "-o", s(&out), "--size", "128"]);
         assert!(o.status.success(), "{}", stderr(&o));
