@@ -1,66 +1,12 @@
 //! `flatten`: the `flatten` job (boundary first flattening) on arrays, the boundary values
 //! given in memory instead of a file.
 
-use std::fmt::Write;
-
-use conformap_disk::BoundarySpec;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
 use crate::arrays::{mesh_input, to_array};
-use crate::errors::usage;
 use crate::keywords;
 use crate::maps::{report_dict, run};
-
-/// The boundary target from its name and, for `scale`, `angles` and `polygon`, its values.
-pub(crate) fn boundary_spec(
-    boundary: &str,
-    values: Option<&[(u32, f64)]>,
-) -> PyResult<(BoundarySpec, Option<String>)> {
-    let named = |what: &str| std::path::PathBuf::from(format!("<{what} values>"));
-    let spec = match boundary {
-        "scale" => BoundarySpec::Scale(named("scale")),
-        "angles" => BoundarySpec::Angles(named("angles")),
-        "polygon" => BoundarySpec::Polygon(named("polygon")),
-        other => BoundarySpec::parse(other).map_err(|_| {
-            usage(format!(
-                "boundary must be one of free, circle, rectangle, scale, angles, polygon, got \
-                 {other:?}"
-            ))
-        })?,
-    };
-    let wants = matches!(
-        spec,
-        BoundarySpec::Scale(_) | BoundarySpec::Angles(_) | BoundarySpec::Polygon(_)
-    );
-    match (wants, values) {
-        (true, Some(v)) => {
-            let mut text = String::new();
-            for (vertex, value) in v {
-                let _ = writeln!(text, "{vertex} {value:?}");
-            }
-            Ok((spec, Some(text)))
-        }
-        (true, None) => Err(usage(format!(
-            "boundary={boundary:?} needs values: a dict or a sequence of (vertex, value) pairs"
-        ))),
-        (false, Some(_)) => Err(usage(format!(
-            "values are for boundary='scale', 'angles' or 'polygon', not {boundary:?}"
-        ))),
-        (false, None) => Ok((spec, None)),
-    }
-}
-
-/// `(vertex, value)` pairs from a dict or a sequence of pairs.
-pub(crate) fn pairs(values: &Bound<'_, PyAny>) -> PyResult<Vec<(u32, f64)>> {
-    let items = match values.cast::<pyo3::types::PyDict>() {
-        Ok(d) => d.items().into_any(),
-        Err(_) => values.clone(),
-    };
-    items.extract::<Vec<(u32, f64)>>().map_err(|_| {
-        usage("values must be a dict {vertex: value} or a sequence of (vertex, value) pairs (0-based vertices)".to_string())
-    })
-}
 
 /// Boundary first flattening, as `conformap flatten`. See `conformap.pyi`.
 #[pyfunction]

@@ -12,27 +12,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
 use crate::arrays::{faces_array, mesh_input, to_array};
-use crate::errors::{bad_input, to_py};
+use crate::errors::to_py;
 use crate::keywords;
 use crate::maps::{report_dict, run};
 use crate::options;
-
-/// Vertex indices from a Python sequence of integers; `name` names it in errors.
-pub(crate) fn vertex_list(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<usize>> {
-    let values: Vec<i64> = obj.extract().map_err(|_| {
-        bad_input(format!(
-            "{name} must be a sequence of integer vertex indices (0-based)"
-        ))
-    })?;
-    values
-        .iter()
-        .enumerate()
-        .map(|(k, &v)| {
-            usize::try_from(v)
-                .map_err(|_| bad_input(format!("{name}[{k}]: {v} is not a vertex index (0-based)")))
-        })
-        .collect()
-}
 
 /// Global conformal parameterization of a surface with handles by a holomorphic 1-form, as
 /// `conformap global`: returns `(uv, F_uv, report)`, the seamed layout (`uv` (k, 2) one

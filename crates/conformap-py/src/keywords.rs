@@ -18,11 +18,8 @@ use pyo3::types::{PyDict, PyString};
 
 use crate::arrays::MEMORY_PATH;
 use crate::errors::usage;
-use crate::flatten::{boundary_spec, pairs};
-use crate::global::vertex_list;
-use crate::maps::choice;
-use crate::mobius::region_faces;
 use crate::options::{nonneg, opt_count};
+use crate::values::{boundary_spec, choice, pairs, region_faces, vertex_list};
 
 /// The keywords of `disk_map` that shape its job (all but `V`, `F`, `max_memory`).
 pub const DISK: &[&str] = &[

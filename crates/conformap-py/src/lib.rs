@@ -19,6 +19,8 @@
 //! - [`meshes`]: `info`, `metrics`, `read_mesh`, `write_mesh`, `repair`.
 //! - [`options`]: keyword arguments checked as the CLI's parser checks its flags.
 //! - [`keywords`]: the keyword → job conversion the map functions and `batch_one` share.
+//! - [`values`]: keyword values turned into option values (shared by the map functions
+//!   and [`keywords`]).
 //! - [`batch`]: `batch_one` (one input of `conformap batch`, for cohorts on a cluster).
 
 pub mod arrays;
@@ -34,6 +36,7 @@ pub mod mobius;
 pub mod morph;
 pub mod options;
 pub mod sphere_uv;
+pub mod values;
 
 use pyo3::prelude::*;
 

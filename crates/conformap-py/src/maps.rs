@@ -3,24 +3,13 @@
 
 use conformap::pipeline::{run_in_memory, Input, MapJob, Solved};
 use conformap::report::Report;
-use conformap::Choice;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
 use crate::arrays::{mesh_input, to_array, to_py_json};
-use crate::errors::{bad_input, to_py, usage};
+use crate::errors::{bad_input, to_py};
 use crate::keywords;
 use crate::options;
-
-/// A value of a job's option enum (`method`, `ordering`, `mobius`) by its name.
-pub(crate) fn choice<T: Choice>(name: &str, value: &str) -> PyResult<T> {
-    T::parse_name(value).map_err(|e| {
-        usage(format!(
-            "{name} must be one of {}, got {value:?}",
-            e.names.join(", ")
-        ))
-    })
-}
 
 /// Runs `job` on `input` with the GIL released ([`run_in_memory`]: usage check, memory
 /// check against `max_memory` or the memory available, solve, report); `strict` refuses

@@ -7,52 +7,18 @@ use std::path::PathBuf;
 
 use conformap::failure::Failure;
 use conformap::jobs::mobius::{Domain, MobiusJob, Objective};
-use conformap::jobs::param::{on_unit_sphere, region_face, MapFile, UNIT_SPHERE_TOL};
+use conformap::jobs::param::{on_unit_sphere, MapFile, UNIT_SPHERE_TOL};
 use conformap::pipeline::{InputOptions, OutputOptions};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
 use crate::arrays::{mesh_input, points, to_array, MEMORY_PATH};
 use crate::errors::{bad_input, to_py, usage};
-use crate::maps::{choice, report_dict, run};
+use crate::maps::{report_dict, run};
+use crate::values::{choice, region_faces};
 
 /// The path reports and errors give for a map passed as an array (as `metrics` does).
 pub const PARAM_PATH: &str = "<array>";
-
-/// The faces of `region` (any integer sequence or array), each checked against `faces`
-/// with the CLI's message (`region[k]` standing for the file and line).
-pub fn region_faces(region: &Bound<'_, PyAny>, faces: usize) -> PyResult<Vec<usize>> {
-    let np = region.py().import("numpy")?;
-    let arr = np.call_method1("asarray", (region,))?;
-    let kind: String = arr.getattr("dtype")?.getattr("kind")?.extract()?;
-    let ndim: usize = arr.getattr("ndim")?.extract()?;
-    let size: usize = arr.getattr("size")?.extract()?;
-    // an empty list has dtype float64: let it through as no face
-    if ndim != 1 || (size > 0 && !"iu".contains(kind.as_str())) {
-        return Err(bad_input(format!(
-            "region must be a 1-D sequence of integer face indices, got {} with dtype {}",
-            arr.getattr("shape")?.str()?,
-            arr.getattr("dtype")?.str()?
-        )));
-    }
-    let values: Vec<i64> = if size == 0 {
-        Vec::new()
-    } else {
-        arr.call_method1("astype", ("int64",))?
-            .call_method0("tolist")?
-            .extract()?
-    };
-    values
-        .iter()
-        .enumerate()
-        .map(|(k, &f)| {
-            let place = format!("region[{k}]");
-            let f = usize::try_from(f)
-                .map_err(|_| bad_input(format!("{place}: {f} is not a face index (0-based)")))?;
-            region_face(f, faces, &place).map_err(to_py)
-        })
-        .collect()
-}
 
 /// The map `param` as the CLI's [`MapFile`]: disk, `(n, 2)` values `u + i v` as a flat
 /// mesh's positions; sphere, `(n, 3)` unit vectors.
