@@ -336,3 +336,70 @@ fn gifti_encodings_by_their_code_names() {
     assert_eq!(mesh.positions()[2], [1.0, 1.0, 0.0]);
     assert_eq!(mesh.faces(), &[[0, 1, 2], [0, 2, 3]]);
 }
+
+/// A binary PLY of the unit square's corners and `faces` (uchar counts, `index_type` 4-byte
+/// indices written from `i64`s), in either byte order.
+fn ply_faces(big: bool, index_type: &str, faces: &[&[i64]]) -> Vec<u8> {
+    let format = if big {
+        "binary_big_endian"
+    } else {
+        "binary_little_endian"
+    };
+    let mut out = format!(
+        "ply\nformat {format} 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+         property float z\nelement face {}\nproperty list uchar {index_type} vertex_indices\n\
+         end_header\n",
+        faces.len()
+    )
+    .into_bytes();
+    for p in SQUARE {
+        for v in p {
+            let v = v as f32;
+            out.extend_from_slice(&if big {
+                v.to_be_bytes()
+            } else {
+                v.to_le_bytes()
+            });
+        }
+    }
+    for f in faces {
+        out.push(f.len() as u8);
+        for &i in *f {
+            let w = i as u32;
+            out.extend_from_slice(&if big {
+                w.to_be_bytes()
+            } else {
+                w.to_le_bytes()
+            });
+        }
+    }
+    out
+}
+
+#[test]
+fn ply_triangle_runs_hand_over_to_the_general_reader() {
+    for big in [false, true] {
+        for index_type in ["int", "uint"] {
+            // triangles, then a quad (fanned), then triangles again
+            let ply = ply_faces(big, index_type, &[&[0, 1, 2], &[0, 1, 2, 3], &[3, 2, 1]]);
+            let raw = conformap_io::read_raw_mesh_from_bytes(&ply, Format::Ply).unwrap();
+            assert_eq!(
+                raw.faces,
+                vec![[0, 1, 2], [0, 1, 2], [0, 2, 3], [3, 2, 1]],
+                "{index_type} big={big}"
+            );
+            // an index no vertex has, after a run of triangles: named by its face
+            let ply = ply_faces(big, index_type, &[&[0, 1, 2], &[0, 1, 2], &[0, -1, 2]]);
+            let e = conformap_io::read_raw_mesh_from_bytes(&ply, Format::Ply)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("face 2"), "{e}");
+            // a file cut inside its last triangle
+            let ply = ply_faces(big, index_type, &[&[0, 1, 2], &[0, 2, 3]]);
+            let e = conformap_io::read_raw_mesh_from_bytes(&ply[..ply.len() - 2], Format::Ply)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("face 1"), "{e}");
+        }
+    }
+}
