@@ -1,6 +1,6 @@
 //! `global_map`: the `global` job on arrays. The region is given in memory
-//! ([`GlobalJob::region_faces`]) instead of a `--region` file; everything else is
-//! [`conformap::run_in_memory`]'s.
+//! ([`conformap::jobs::global::GlobalJob::region_faces`]) instead of a `--region` file;
+//! everything else is [`conformap::run_in_memory`]'s.
 //!
 //! The seamed layout comes back as libigl / trimesh keep seamed texture coordinates: `uv`
 //! `(k, 2)`, one row per corner class (a vertex, split where a seam passes through it),

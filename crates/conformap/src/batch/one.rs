@@ -1,4 +1,4 @@
-//! One input of a batch on its own: what [`super::run_streaming`] does for each input,
+//! One input of a batch on its own: what [`crate::batch::run_streaming`] does for each input,
 //! callable by a front end that distributes the inputs itself (a Dask or SLURM cluster
 //! through the Python package's `batch_one`), so that its lines cannot drift from
 //! `conformap batch`'s.
