@@ -225,7 +225,7 @@ fn check_metrics(mesh: &TriMesh, map: &[Complex64]) {
 /// hexagonal disk: on success the map has the mesh's vertex count (and one texture
 /// coordinate per vertex if any); on failure the error is bad input with a hint.
 pub fn param(data: &[u8]) {
-    use conformap_cli::commands::param::read_map_file;
+    use conformap::jobs::param::read_map_file;
     use std::sync::OnceLock;
     static MESH: OnceLock<TriMesh> = OnceLock::new();
     let mesh = MESH.get_or_init(|| {
@@ -248,7 +248,7 @@ pub fn param(data: &[u8]) {
             if let Some(uv) = &map.uv {
                 assert_eq!(uv.len(), mesh.num_vertices());
             }
-            use conformap_cli::commands::param::PlanarMap;
+            use conformap::jobs::param::PlanarMap;
             match map.planar_map().0 {
                 PlanarMap::PerVertex(p) => assert_eq!(p.len(), mesh.num_vertices()),
                 PlanarMap::PerCorner(c) => assert_eq!(c.len(), 3 * mesh.num_faces()),
