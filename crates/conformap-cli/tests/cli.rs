@@ -249,6 +249,38 @@ fn strict_without_convergence_exits_3_and_writes_nothing() {
     assert!(!out.exists());
 }
 
+/// A run stopped by the iteration cap says so on its summary line, with the option that
+/// raises the cap (and, for the plain gradient method, the default that converges).
+#[test]
+fn the_summary_says_when_the_iteration_cap_stopped_the_run() {
+    let d = tmpdir("cap");
+    let out = d.join("o.obj");
+    let run = |method: &str| {
+        let o = conformap(&[
+            "disk",
+            s(&fixture("woody.obj")),
+            "-o",
+            s(&out),
+            "--method",
+            method,
+            "--max-iter",
+            "3",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let e = run("ccem");
+    assert!(
+        e.contains("ccem in 3 iterations (stopped at the iteration cap: --max-iter raises it; the default ccem-qn"),
+        "{e}"
+    );
+    let e = run("ccem-qn");
+    assert!(
+        e.contains("(stopped at the iteration cap: --max-iter raises it)"),
+        "{e}"
+    );
+}
+
 #[test]
 fn gltf_and_glb_outputs_round_trip_through_metrics() {
     let d = tmpdir("gltf");

@@ -190,8 +190,9 @@ fn fall_back(
 }
 
 /// `out` passed through [`unfold_disk_map`] unless [`DiskOptions::keep_folds`]: a map that
-/// folds is replaced by its flip-free repair, whose energy is appended to the history (and
-/// made the returned iterate), with a note saying what was done.
+/// folds is replaced by its flip-free repair, whose energy is appended to the history (one
+/// more iteration, made the returned iterate and [`SolverReport::best_from`]), with a note
+/// saying what was done.
 fn unfolded(
     problem: &DiskProblem<'_>,
     mut out: DiskMap,
@@ -207,7 +208,9 @@ fn unfolded(
     };
     let r = &mut out.report;
     r.energy_history.push(problem.conformal_energy(&u.map));
+    r.iterations += 1;
     r.best_iteration = r.energy_history.len() - 1;
+    r.best_from = r.best_iteration;
     r.notes.push(note);
     out.map = u.map;
     r.residual = interior_residual(problem, &out.map);

@@ -222,6 +222,18 @@ fn harmonic_and_cem_maps_that_fold_come_back_flip_free_unless_kept() {
         let r = &out.report;
         assert_eq!(r.energy_history.len(), raw.report.energy_history.len() + 1);
         assert_eq!(r.best_iteration, r.energy_history.len() - 1);
+        // the repair is one more iteration and where the returned iterate is chosen from
+        assert_eq!(
+            r.iterations,
+            raw.report.iterations + 1,
+            "{method} seed {seed}"
+        );
+        assert_eq!(
+            r.energy_history.len(),
+            r.iterations + 1,
+            "{method} seed {seed}"
+        );
+        assert_eq!(r.best_from, r.best_iteration, "{method} seed {seed}");
         let e = problem.conformal_energy(&out.map);
         assert!((r.energy_history[r.best_iteration] - e).abs() <= 1e-12 * e.abs());
         assert!(

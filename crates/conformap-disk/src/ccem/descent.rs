@@ -57,6 +57,9 @@ pub(crate) struct Descent<'s, 'a, 'm> {
     /// Current floor on gaps.
     pub floor: f64,
     pub history: Vec<f64>,
+    /// The first entry of `history` at the current floor (the returned iterate is the
+    /// least from there on; see `SolverReport::best_from`).
+    pub best_from: usize,
     pub gnorm: Vec<f64>,
     pub ls: LineSearchReport,
     /// Gaps held at the floor by the last direction.
@@ -93,6 +96,7 @@ impl<'s, 'a, 'm> Descent<'s, 'a, 'm> {
             },
             floor: options.min_gap,
             history: Vec::new(),
+            best_from: 0,
             gnorm: Vec::new(),
             ls: LineSearchReport::default(),
             held: 0,

@@ -96,11 +96,12 @@ pub(super) fn minimize_valid(
             let (aligned, a) = align(descent.schur, last, tol);
             realigned += 1;
             last = aligned;
+            // logged whether or not the descent goes on from it: it is the state returned
+            descent.log_state(&last);
             if !(a.energy_before - a.energy_after > tol * a.energy_after.abs()) {
                 break;
             }
             descent.bfgs.reset();
-            descent.log_state(&last);
             let (next, s) = descent.minimize(last);
             last = next;
             stop = s;
@@ -142,5 +143,7 @@ pub(super) fn minimize_valid(
         descent.bfgs.reset();
         cur = evaluate(descent.schur, theta);
         descent.log_state(&cur);
+        // the states before this one were at a floor whose minimum folds faces
+        descent.best_from = descent.history.len() - 1;
     }
 }

@@ -59,7 +59,7 @@ use crate::DiskError;
 ///   `1e-4` rad (or a tenth of the mean gap), or folds without crowding, CCEM refuses with
 ///   [`DiskError::Folded`].
 /// - Energy never rises on an accepted step; the returned map is the last iterate, which
-///   is the best.
+///   is the best since the last raise of the gap floor (`SolverReport::best_from`).
 ///
 /// # Errors
 /// [`DiskError::InvalidOption`] for out-of-range options; errors of the CEM start;
@@ -144,9 +144,12 @@ pub fn ccem(problem: &mut DiskProblem<'_>, options: &CcemOptions) -> Result<Disk
             "ccem"
         }
         .to_string(),
-        iterations: descent.iterations,
+        // every logged state after the start: the steps, the re-alignments and the
+        // projections onto a raised floor (so that `best_iteration ≤ iterations`)
+        iterations: descent.history.len() - 1,
         converged: matches!(stop, Stop::Tolerance | Stop::Rounding),
         best_iteration: descent.history.len() - 1,
+        best_from: descent.best_from,
         energy_history: descent.history,
         residual,
         factorizations: 1 + start.extra_factorizations,

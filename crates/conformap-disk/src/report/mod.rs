@@ -29,7 +29,11 @@ pub struct Timings {
 pub struct SolverReport {
     /// Method name: `harmonic`, `cem`, `ccem` or `ccem-qn`.
     pub method: String,
-    /// Boundary iterations performed (0 for a single harmonic solve).
+    /// Iterations performed (0 for a single harmonic solve): one per entry of
+    /// `energy_history` after the first, so `energy_history.len() == iterations + 1`. For
+    /// CCEM these are its boundary steps and the states it reaches otherwise (a Möbius
+    /// re-alignment, the projection onto a raised gap floor); the flip-free repair of a
+    /// folded harmonic or CEM map counts as one.
     pub iterations: usize,
     /// Whether the stopping tolerance was met before the iteration cap.
     pub converged: bool,
@@ -37,9 +41,15 @@ pub struct SolverReport {
     /// harmonic or CEM iterate folded, the energy of its flip-free repair
     /// ([`crate::unfold_disk_map`]) is appended last.
     pub energy_history: Vec<f64>,
-    /// Index into `energy_history` of the iterate returned: the one of least energy, or
-    /// the appended flip-free repair.
+    /// Index into `energy_history` of the iterate returned (`≤ iterations`): the one of
+    /// least energy among the entries from [`Self::best_from`] on.
     pub best_iteration: usize,
+    /// The first entry of `energy_history` the returned iterate is chosen among: 0, or
+    /// the entry where the run went on from a map that folded faces — the projection
+    /// onto a raised gap floor (CCEM, when boundary gaps at the floor are below what f64
+    /// resolves on the mesh) or the flip-free repair of a folded harmonic or CEM map.
+    /// The entries before it may have lower energy: their maps fold faces.
+    pub best_from: usize,
     /// Relative residual `‖L_II f_I + L_IB f_B‖∞ / ‖L_IB f_B‖∞` of the returned map, `L`
     /// the problem's Laplacian (not small when the notes say the interior was re-solved
     /// with a reserve operator).

@@ -304,7 +304,7 @@ impl DiskJob {
                 None => s.method.clone(),
             },
             s.iterations,
-            if s.converged { " (converged)" } else { "" },
+            stop_words(s),
             metrics.conformal_energy,
             metrics.angle_distortion_deg.mean,
             metrics.flipped_faces,
@@ -415,5 +415,25 @@ impl DiskJob {
             strict_violation: None,
             summary,
         })
+    }
+}
+
+/// How a disk method's iterations ended, for the summary line: `" (converged)"`, or why
+/// not when the method said (the iteration cap, a stalled line search), with the option
+/// that changes it.
+fn stop_words(s: &conformap_disk::SolverReport) -> String {
+    if s.converged {
+        " (converged)".to_string()
+    } else if s.notes.iter().any(|n| n == "stopped at the iteration cap") {
+        let qn = if s.method == "ccem" {
+            "; the default ccem-qn converges in far fewer"
+        } else {
+            ""
+        };
+        format!(" (stopped at the iteration cap: --max-iter raises it{qn})")
+    } else if let Some(n) = s.notes.iter().find(|n| n.starts_with("stopped:")) {
+        format!(" ({n})")
+    } else {
+        String::new()
     }
 }

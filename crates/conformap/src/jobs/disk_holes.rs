@@ -82,7 +82,7 @@ pub fn solve(options: &KoebeOptions, input: &Input) -> Result<Solved, Failure> {
         method: "koebe".to_string(),
         uv: disk_uv(&result.map).into(),
         flat: (planar_points(&result.map), None),
-        solver: SolverSection::new(result.summary(), SolverDetail::Koebe(r.clone())),
+        solver: SolverSection::new(result.summary(), SolverDetail::Koebe(Box::new(r.clone()))),
         param: None,
         sections,
         metrics: MetricsSection::planar(metrics),
