@@ -227,3 +227,61 @@ fn every_bad_input_class_gets_its_message() {
         "punctured_torus.obj",
     );
 }
+
+/// `--max-memory` holds the morph as it holds `disk`: refused before reading when the
+/// surfaces' files alone would not fit, refused after reading and before solving when the
+/// morph's estimate (every surface's disk problem kept at once) would not, with the
+/// estimate, the limit and a hint, exit 1 and nothing written; the report of a run that
+/// fits carries the estimate and the limit.
+#[test]
+fn max_memory_refuses_before_reading_and_before_solving() {
+    let d = tmpdir("morph-memory");
+    let ((m1, l1), (m2, l2)) = (face("ict_neutral"), face("ict_pout"));
+    let (out, rep) = (d.join("m.glb"), d.join("r.json"));
+    let run = |limit: &str| {
+        conformap(&[
+            "morph",
+            s(&m1),
+            s(&m2),
+            "--landmarks",
+            s(&l1),
+            s(&l2),
+            "--frames",
+            "3",
+            "-o",
+            s(&out),
+            "--report",
+            s(&rep),
+            "--max-memory",
+            limit,
+        ])
+    };
+    let file_bytes = std::fs::metadata(&m1).unwrap().len() + std::fs::metadata(&m2).unwrap().len();
+    // below the read estimate (8 bytes per file byte)
+    let o = run(&(file_bytes * 4).to_string());
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("reading these 2 files"), "{e}");
+    assert!(e.contains("hint:"), "{e}");
+    assert!(!out.exists() && !rep.exists());
+    // above the read estimate, below the solve's
+    let o = run(&(file_bytes * 8 + 1024).to_string());
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("the morph through these 2 surfaces needs an estimated"),
+        "{e}"
+    );
+    assert!(e.contains("(--max-memory); nothing was computed"), "{e}");
+    assert!(!out.exists() && !rep.exists());
+    // enough
+    let o = run("4G");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = json(&rep);
+    let est = r["memory"]["estimated_peak_bytes"].as_u64().unwrap();
+    assert!(est > file_bytes * 8, "estimate {est}");
+    assert_eq!(r["memory"]["limit_source"], "--max-memory");
+    // the measured peak is below the estimate (the model is cautious, not wild: within 20×)
+    let peak = r["memory"]["peak_rss_bytes"].as_u64().unwrap();
+    assert!(peak > 0 && est < 20 * peak, "estimate {est}, peak {peak}");
+}

@@ -39,6 +39,12 @@ pub struct MorphArgs {
     /// Write a JSON report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Refuse (exit 1, nothing computed) if the estimated peak memory exceeds SIZE (bytes,
+    /// or with K/M/G/T, e.g. 4G), checked before reading the surfaces and before solving.
+    /// Default: the memory available (Linux MemAvailable, within the cgroup limit); no
+    /// check where that is unknown.
+    #[arg(long, value_name = "SIZE", value_parser = crate::args::parse_size)]
+    pub max_memory: Option<u64>,
 }
 
 impl MorphArgs {
@@ -53,6 +59,7 @@ impl MorphArgs {
         job.lambda = self.lambda;
         job.hard = self.hard;
         job.report = self.report.clone();
+        job.max_memory = self.max_memory;
         job
     }
 }

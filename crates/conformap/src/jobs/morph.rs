@@ -13,8 +13,9 @@ use conformap_morph::{morph, Landmarks, Morph, MorphError, MorphOptions, MorphRe
 use serde::Serialize;
 
 use crate::failure::Failure;
+use crate::pipeline::memory::MemoryCheck;
 use crate::pipeline::{check_outputs, read_input, Outcome, Staged};
-use crate::report::{ms_since, InputInfo, StageTimings};
+use crate::report::{ms_since, InputInfo, MemoryReport, StageTimings};
 
 /// Arguments of `conformap morph`.
 #[non_exhaustive]
@@ -43,6 +44,10 @@ pub struct MorphJob {
     pub hard: bool,
     /// Write a JSON report here.
     pub report: Option<PathBuf>,
+    /// Refuse (nothing computed) if the estimated peak memory exceeds this many bytes,
+    /// before reading (all surfaces) and before solving ([`morph_peak_bytes`]). Default:
+    /// `None`, the memory available (no check where that is unknown).
+    pub max_memory: Option<u64>,
 }
 
 impl MorphJob {
@@ -69,7 +74,14 @@ impl MorphJob {
             lambda: None,
             hard: false,
             report: None,
+            max_memory: None,
         }
+    }
+
+    /// With a memory limit (bytes) instead of the memory available.
+    pub fn with_max_memory(mut self, bytes: Option<u64>) -> Self {
+        self.max_memory = bytes;
+        self
     }
 
     /// Also writing the JSON report to `path`.
@@ -106,6 +118,36 @@ pub struct MorphCommandReport {
     /// Wall-clock milliseconds: `read` (all surfaces), `solve` (the morph), `write`,
     /// `total`.
     pub timings_ms: StageTimings,
+    /// The memory check of the CLI run: estimate, limit, measured peak (`None`, not
+    /// written, for a morph of arrays, which the Python package checks itself).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub memory: Option<MemoryReport>,
+}
+
+/// Bytes per S1 vertex per frame being written: its position (3 f64) and its OBJ text
+/// (`v x y z`, up to about 3 × 25 characters): `104`.
+const FRAME_WRITE_BYTES_PER_VERTEX: u64 = 24 + 80;
+
+/// Estimated peak resident memory (bytes) of the morph of `surfaces` and its output: every
+/// surface's disk problem is prepared at once and kept through the registration (its
+/// factorization serves every λ), so their peaks ([`conformap_disk::DiskMethod::peak_bytes`]
+/// of the morph's disk method) add; then per key surface the position, location and
+/// landing of S1's vertices and faces, and the frames written at once (one per thread).
+pub fn morph_peak_bytes(surfaces: &[Surface], options: &MorphOptions) -> u64 {
+    let disks: u64 = surfaces
+        .iter()
+        .map(|s| options.disk_method.peak_bytes(&s.mesh))
+        .fold(0, u64::saturating_add);
+    let Some(s1) = surfaces.first() else {
+        return disks;
+    };
+    let (n, f) = (s1.mesh.num_vertices() as u64, s1.mesh.num_faces() as u64);
+    let location = std::mem::size_of::<conformap_morph::Location>() as u64;
+    let keys = (surfaces.len() as u64).saturating_mul(n * (24 + location) + f * location);
+    let writers = rayon::current_num_threads() as u64;
+    disks
+        .saturating_add(keys)
+        .saturating_add(writers.saturating_mul(n * FRAME_WRITE_BYTES_PER_VERTEX))
 }
 
 /// Where the frames go.
@@ -188,9 +230,15 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         crate::jobs::morph_frames::create_frame_directory(&args.output)?;
     }
     check_morph_outputs(args, &target)?;
+    let paths: Vec<&Path> = args.surfaces.iter().map(PathBuf::as_path).collect();
+    let memory = MemoryCheck::before_reading_all(&paths, args.max_memory)?;
     let t = Instant::now();
     let surfaces = read_surfaces(args)?;
     let read_ms = ms_since(t);
+    let memory = memory.before_solving(
+        morph_peak_bytes(&surfaces, &args.options()),
+        &format!("the morph through these {} surfaces", surfaces.len()),
+    )?;
     let solution = solve(args, &surfaces)?;
 
     let t = Instant::now();
@@ -202,7 +250,8 @@ fn run(args: &MorphJob) -> Result<Outcome, Failure> {
         total: ms_since(t_all),
         ..StageTimings::default()
     };
-    let report = command_report(args, &surfaces, &solution, timings);
+    let mut report = command_report(args, &surfaces, &solution, timings);
+    report.memory = Some(memory.report());
     if let Some(path) = &args.report {
         staged.json(path, &report)?;
     }
@@ -361,6 +410,7 @@ pub fn command_report(
             solve: solution.solve_ms,
             ..timings
         },
+        memory: None,
     }
 }
 

@@ -27,25 +27,37 @@ impl MemoryCheck {
     /// Checks that reading `path` fits in `max_memory` or (without it) the memory
     /// available now, before anything is read.
     pub fn before_reading(path: &Path, max_memory: Option<u64>) -> Result<Self, Failure> {
+        Self::before_reading_all(&[path], max_memory)
+    }
+
+    /// Checks that reading every file of `paths` (all kept in memory together, as `morph`
+    /// keeps its key surfaces) fits in `max_memory` or the memory available now, before
+    /// anything is read.
+    pub fn before_reading_all(paths: &[&Path], max_memory: Option<u64>) -> Result<Self, Failure> {
         let limit = match max_memory {
             Some(m) => Some((m, "--max-memory")),
             None => available_memory(),
         };
-        let size = std::fs::metadata(path).map_or(0, |m| m.len());
+        let (mut size, mut file_bytes) = (0u64, 0u64);
+        for path in paths {
+            let bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+            size = size.saturating_add(bytes);
+            if let Ok(conformap_io::Format::Obj) = conformap_io::Format::from_path(path) {
+                file_bytes = file_bytes.saturating_add(bytes);
+            }
+        }
         let read_estimate = conformap_io::READ_PEAK_BYTES_PER_FILE_BYTE.saturating_mul(size);
         let check = Self {
             read_estimate,
             estimate: read_estimate,
-            file_bytes: match conformap_io::Format::from_path(path) {
-                Ok(conformap_io::Format::Obj) => size,
-                _ => 0,
-            },
+            file_bytes,
             limit,
         };
-        check.refuse_above(
-            read_estimate,
-            &format!("reading this {} file", human_bytes(size)),
-        )?;
+        let what = match paths.len() {
+            1 => format!("reading this {} file", human_bytes(size)),
+            n => format!("reading these {n} files ({} in all)", human_bytes(size)),
+        };
+        check.refuse_above(read_estimate, &what)?;
         Ok(check)
     }
 
