@@ -226,6 +226,17 @@ fn every_bad_input_class_gets_its_message() {
         1,
         "punctured_torus.obj",
     );
+    // interior vertices the maze's disk map crowds against the circle: not called boundary
+    // vertices (they are not), and the hint says where to put landmarks instead
+    let maze = fixture("maze.obj");
+    let ml = write("maze.txt", "100 a\n200 b\n");
+    refused(
+        "maze",
+        &[maze.clone(), maze],
+        &[ml.clone(), ml],
+        1,
+        "landmark 0 (vertex 100) is an interior vertex, but the disk map puts it at |z| = 0.99999",
+    );
 }
 
 /// `--max-memory` holds the morph as it holds `disk`: refused before reading when the

@@ -84,6 +84,22 @@ pub enum MorphError {
         /// `|z|` of its disk map value.
         radius: f64,
     },
+    /// The first or second landmark is an interior vertex of the mesh, but the surface's
+    /// disk map puts it within [`crate::NORMALIZE_BOUNDARY_TOL`] of the circle (a long or
+    /// narrow part of the boundary crowds vertices against it, as the maze's corridors do),
+    /// where the normalization cannot send it to the centre in f64. Fix: choose landmarks
+    /// nearer the middle of the surface.
+    #[error("surface {surface}: landmark {index} (vertex {vertex}) is an interior vertex, but the disk map puts it at |z| = {radius}, too close to the circle for the normalization to send it to the centre (the surface's boundary crowds it there)")]
+    LandmarkNearCircle {
+        /// 0-based surface.
+        surface: usize,
+        /// 0-based landmark position (0 or 1).
+        index: usize,
+        /// The vertex.
+        vertex: u32,
+        /// `|z|` of its disk map value.
+        radius: f64,
+    },
     /// The disk map of a surface failed (e.g. it is not a disk): see the inner error.
     #[error("surface {surface}: disk map failed: {source}")]
     Disk {

@@ -266,7 +266,9 @@ struct Prepared<'m> {
 /// # Errors
 /// [`MorphError::TooFewSurfaces`]; the landmark checks ([`Landmarks::check_against`],
 /// [`Landmarks::check_same_names`]); [`MorphError::Disk`] when a surface is not a disk or
-/// its map fails; [`MorphError::LandmarkOnBoundary`]; the registration's errors
+/// its map fails; [`MorphError::LandmarkOnBoundary`] (a boundary vertex) or
+/// [`MorphError::LandmarkNearCircle`] (an interior one the disk map crowds against the
+/// circle) for the first two landmarks; the registration's errors
 /// ([`crate::register_disk`]); [`MorphError::InvalidOption`] for bad key times, crease
 /// angle or corner warp support; [`MorphError::Operator`] if S1's crease-loop extension cannot be
 /// factored or the corner warp's interpolation matrix is singular.
@@ -380,7 +382,9 @@ fn prepare<'m>(
     let disk_ms = ms(t0);
     let t1 = Instant::now();
     let lm = s.landmarks.vertices();
-    let normalized = normalize_disk_map(&disk.map, lm[0], lm[1], k)?.map;
+    let normalized = normalize_disk_map(&disk.map, lm[0], lm[1], k)
+        .map_err(|e| near_circle(e, &s.mesh))?
+        .map;
     Ok(Prepared {
         problem,
         disk,
@@ -388,6 +392,25 @@ fn prepare<'m>(
         disk_ms,
         normalize_ms: ms(t1),
     })
+}
+
+/// A landmark the normalization refused as on the circle that is an interior vertex of
+/// the mesh: [`MorphError::LandmarkNearCircle`] (the disk map crowds it there).
+fn near_circle(e: MorphError, mesh: &TriMesh) -> MorphError {
+    match e {
+        MorphError::LandmarkOnBoundary {
+            surface,
+            index,
+            vertex,
+            radius,
+        } if !mesh.is_boundary_vertex(vertex as usize) => MorphError::LandmarkNearCircle {
+            surface,
+            index,
+            vertex,
+            radius,
+        },
+        other => other,
+    }
 }
 
 /// The report of surface `k` without its registration, location and flip counts.

@@ -470,13 +470,18 @@ fn morph_failure(e: MorphError, args: &MorphJob) -> Failure {
         MorphError::LandmarkOutOfRange { surface, .. }
         | MorphError::RepeatedLandmark { surface, .. }
         | MorphError::LandmarkMismatch { surface, .. }
-        | MorphError::LandmarkOnBoundary { surface, .. } => {
+        | MorphError::LandmarkOnBoundary { surface, .. }
+        | MorphError::LandmarkNearCircle { surface, .. } => {
             let hint = match &e {
                 MorphError::LandmarkMismatch { .. } => {
                     "every landmark file needs the same names in the same order"
                 }
                 MorphError::LandmarkOnBoundary { .. } => {
                     "put an interior vertex (e.g. the nose tip) first and second"
+                }
+                MorphError::LandmarkNearCircle { .. } => {
+                    "put landmarks nearer the middle of the surface first and second, away \
+                     from long or narrow parts of its boundary"
                 }
                 _ => "landmark indices are 0-based vertices of that surface's mesh, each once",
             };
