@@ -238,13 +238,22 @@ def disk_run(tmp_path, mesh, name):
                "--report", tmp_path / f"{name}.json", "-q")
     assert proc.returncode == 0, proc.stderr
     report = json.loads((tmp_path / f"{name}.json").read_text())
-    flat, _ = conformap.read_mesh(tmp_path / f"{name}_flat.obj")
+    # the map's points as written (not through read_mesh: a disk map squeezes some of
+    # hand's faces below the mesh reader's degenerate-area bound, 7e-14 of the unit disk)
+    text = (tmp_path / f"{name}_flat.obj").read_text().splitlines()
+    flat = np.array([[float(x) for x in l.split()[1:4]] for l in text if l.startswith("v ")])
     return report, flat
 
 
+LARGE = pytest.mark.skipif(not (SHARED / "hand.obj").exists() or not os.environ.get("CONFORMAP_LARGE"),
+                           reason="opt-in: CONFORMAP_LARGE=1 and the shared hand.obj")
+
+
 @pytest.mark.parametrize("kind", ["ply-ascii", "ply-binary", "off", "stl-ascii", "stl-binary"])
-def test_numpy_written_formats_give_the_obj_run(kind, tmp_path):
-    V, F = conformap.read_mesh(FIXTURES / "woody.obj")
+@pytest.mark.parametrize("mesh", [FIXTURES / "woody.obj", pytest.param(SHARED / "hand.obj", marks=LARGE)],
+                         ids=["woody", "hand"])
+def test_numpy_written_formats_give_the_obj_run(kind, mesh, tmp_path):
+    V, F = conformap.read_mesh(mesh)
     if kind.startswith("stl"):
         V, F = welded(V, F)  # the OBJ of STL's welded vertices
     conformap.write_mesh(tmp_path / "ref.obj", V, F)
