@@ -272,6 +272,41 @@ def test_numpy_written_formats_give_the_obj_run(kind, mesh, tmp_path):
     assert np.max(np.abs(flat - ref_flat)) < 1e-12  # the same vertex order
 
 
+@pytest.mark.parametrize("command", ["disk", "sphere"])
+def test_ply_output_reads_back_in_plyfile(command, tmp_path):
+    """A second PLY reader (plyfile, PyPI) reads what conformap writes: the input's points
+    and triangles in its order, and the texture coordinates of the OBJ output corner by
+    corner — per vertex (`texture_u`, `texture_v`) for a disk map, per face corner (the
+    face's `texcoord` list, as MeshLab writes it) for the sphere texture split at its
+    seam."""
+    plyfile = pytest.importorskip("plyfile")  # CI installs it (.ci/run)
+    mesh = FIXTURES / ("woody.obj" if command == "disk" else "spot.obj")
+    V, F = conformap.read_mesh(mesh)
+    ply, obj = tmp_path / "out.ply", tmp_path / "out.obj"
+    for out in (ply, obj):
+        proc = cli(command, mesh, "-o", out, "-q")
+        assert proc.returncode == 0, proc.stderr
+    data = plyfile.PlyData.read(str(ply))
+    vert, face = data["vertex"], data["face"]
+    P = np.stack([vert["x"], vert["y"], vert["z"]], axis=1)
+    Fp = np.stack(face["vertex_indices"]).astype(np.int64)
+    assert np.array_equal(Fp, F) and np.max(np.abs(P - V)) == 0.0
+    # the OBJ output's texture coordinate of every corner
+    vt, fvt = [], []
+    for line in obj.read_text().splitlines():
+        if line.startswith("vt "):
+            vt.append([float(x) for x in line.split()[1:3]])
+        elif line.startswith("f "):
+            fvt.append([int(c.split("/")[1]) - 1 for c in line.split()[1:4]])
+    corners = np.array(vt)[np.array(fvt)]  # (faces, 3, 2)
+    if command == "disk":
+        UV = np.stack([vert["texture_u"], vert["texture_v"]], axis=1)[Fp]
+    else:
+        UV = np.stack(face["texcoord"]).reshape(-1, 3, 2)
+        assert np.max(np.ptp(UV[:, :, 0], axis=1)) <= 0.25  # no face spans the texture
+    assert np.max(np.abs(UV - corners)) < 1e-12
+
+
 @pytest.mark.skipif(not (SHARED / "brain.obj").exists() or not os.environ.get("CONFORMAP_LARGE"),
                     reason="opt-in: CONFORMAP_LARGE=1 and the shared brain.obj")
 @pytest.mark.parametrize("fmt", ["gifti", "freesurfer"])
