@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use conformap::failure::Failure;
-use conformap::jobs::morph::{command_report, solve, MorphJob};
-use conformap::report::StageTimings;
+use conformap::jobs::morph::{command_report, morph_peak_bytes, solve, MorphJob};
+use conformap::report::{MemoryReport, StageTimings};
 use conformap_morph::{Landmarks, Surface};
 use numpy::{PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
@@ -130,7 +130,8 @@ pub fn morph<'py>(
         let lms = self::landmarks(lms, k, order.as_deref())?;
         keys.push(Surface::new(input.mesh, lms));
     }
-    let (solution, report, positions) = py
+    let memory = check_morph_memory(&keys, &args, frames)?;
+    let (solution, mut report, positions) = py
         .detach(|| {
             let t = Instant::now();
             let solution = solve(&args, &keys)?;
@@ -149,6 +150,10 @@ pub fn morph<'py>(
             Ok::<_, Failure>((solution, report, positions))
         })
         .map_err(to_py)?;
+    report.memory = Some(MemoryReport {
+        peak_rss_bytes: conformap_operators::peak_rss_bytes(),
+        ..memory
+    });
     let m = &solution.morph;
     let n = positions.len() / (3 * frames.max(1));
     let frames_array = numpy::PyArray1::from_vec(py, positions).reshape([frames, n, 3])?;
@@ -191,6 +196,38 @@ fn by_name(pairs: Vec<(i64, String)>, order: Option<&[String]>) -> Vec<(i64, Str
 /// Bytes per frame vertex kept at once: the frame's positions in the result array (3 f64)
 /// and the frame being evaluated.
 const FRAME_BYTES_PER_VERTEX: u64 = 2 * 3 * 8;
+
+/// Refuses, before the morph is solved, a morph of `keys` whose estimate (the CLI's
+/// [`morph_peak_bytes`], plus the frames returned) is above the memory available, as
+/// `conformap morph` does; returns the report's `memory` object (without the peak).
+fn check_morph_memory(keys: &[Surface], args: &MorphJob, frames: usize) -> PyResult<MemoryReport> {
+    let n = keys.first().map_or(0, |s| s.mesh.num_vertices()) as u64;
+    let estimate = morph_peak_bytes(keys, &args.options()).saturating_add(
+        (frames as u64)
+            .saturating_mul(n)
+            .saturating_mul(FRAME_BYTES_PER_VERTEX),
+    );
+    let limit = conformap_operators::available_memory();
+    if let Some((bytes, from)) = limit.filter(|&(bytes, _)| estimate > bytes) {
+        let human = conformap::pipeline::memory::human_bytes;
+        return Err(to_py(Failure::BadInput(
+            format!(
+                "the morph through these {} surfaces needs an estimated {} at peak, more \
+                 than the {} available ({from}); nothing was computed",
+                keys.len(),
+                human(estimate),
+                human(bytes)
+            ),
+            Some("free memory or use a larger machine, or decimate the meshes".to_string()),
+        )));
+    }
+    Ok(MemoryReport {
+        estimated_peak_bytes: estimate,
+        limit_bytes: limit.map(|l| l.0),
+        limit_source: limit.map(|l| l.1),
+        peak_rss_bytes: None,
+    })
+}
 
 /// Refuses, before any work, `frames` frames of `n` vertices that would not fit in the
 /// memory available (the result alone is `frames × n × 24` bytes): a failed allocation

@@ -118,8 +118,8 @@ pub struct MorphCommandReport {
     /// Wall-clock milliseconds: `read` (all surfaces), `solve` (the morph), `write`,
     /// `total`.
     pub timings_ms: StageTimings,
-    /// The memory check of the CLI run: estimate, limit, measured peak (`None`, not
-    /// written, for a morph of arrays, which the Python package checks itself).
+    /// The memory check: estimate, limit, measured peak (filled in by the caller that ran
+    /// the check, the CLI or the Python package; `None`, not written, where none ran).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub memory: Option<MemoryReport>,
 }
@@ -209,7 +209,9 @@ impl MorphJob {
         Ok(())
     }
 
-    fn options(&self) -> MorphOptions {
+    /// The library's options these arguments ask for (λ or hard landmarks, the rest the
+    /// library's defaults).
+    pub fn options(&self) -> MorphOptions {
         match (self.hard, self.lambda) {
             (true, _) => MorphOptions::DEFAULT.with_hard_landmarks(),
             (false, Some(l)) => MorphOptions::DEFAULT.with_lambda(l),
