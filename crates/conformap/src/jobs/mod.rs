@@ -17,6 +17,7 @@ pub mod metrics;
 pub mod mobius;
 pub mod morph;
 mod morph_frames;
+mod morph_input;
 pub mod param;
 pub mod param_match;
 pub mod render;
