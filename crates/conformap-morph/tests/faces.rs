@@ -183,18 +183,19 @@ fn shared_three_faces_sixty_frames() {
         .map(|n| surface(&dir, n))
         .collect();
     let m = morph(&surfaces, &MorphOptions::DEFAULT).unwrap();
-    // wry: no flipped face (measured 0); pout: isolated slivers (measured 2 flipped
-    // faces, patch 1)
-    let worst = check(&surfaces, &m, 60, &[0, 1]);
+    // isolated slivers: wry measured 5 flipped faces, patch 1 (0 when the rims were cut
+    // at their two vertices farthest apart and shared by arc length in the disk, which
+    // turns a round mouth by a quarter: tests/round_mouth.rs); pout 2, patch 1
+    let worst = check(&surfaces, &m, 60, &[1, 1]);
     // measured 2.0e-4 (wry) and 1.4e-4 (pout)
     assert!(worst < 0.01, "landmark error {worst:.3e}");
     let flips: Vec<usize> = m.report.keys[1..]
         .iter()
         .map(|r| r.key_frame_flipped_faces)
         .collect();
-    assert!(flips[0] == 0 && flips[1] <= 2, "{flips:?}");
-    // wry: the harmonic extension of the rim moves folds 12 faces of S1's disk at the
-    // mouth corner, the untangling leaves 8 of them, the corner warp moves wry's mouth
+    assert!(flips[0] <= 5 && flips[1] <= 2, "{flips:?}");
+    // wry: the harmonic extension of the rim moves folds 36 faces of S1's disk at the
+    // mouth corner, the untangling leaves 24 of them, the corner warp moves wry's mouth
     // corner onto S1's, and then every rim vertex lands on wry's rims with nothing
     // folded; pout needs neither
     let c = m.report.keys[1].creases.as_ref().unwrap();
@@ -217,7 +218,7 @@ fn shared_three_faces_sixty_frames() {
     assert!(c.warped_corners == 0 && c.corner_warp.is_none(), "{c:?}");
     assert!(c.rim_vertices == 158 && c.smallest_share >= 1.0, "{c:?}");
     let hard = morph(&surfaces, &MorphOptions::DEFAULT.with_hard_landmarks()).unwrap();
-    let hard_err = check(&surfaces, &hard, 60, &[0, 1]);
+    let hard_err = check(&surfaces, &hard, 60, &[1, 1]);
     assert!(hard_err <= 1e-9, "hard landmark error {hard_err:.3e}");
     assert_eq!(m.key_frames(60).unwrap(), vec![0, 30, 59]);
 }
