@@ -18,8 +18,9 @@
 //! vertex `i` is the key surface's next vertex in order, except S1 vertices that the key's
 //! crop dropped (`ict_wry` drops the top of the forehead): an S1 vertex above `y =
 //! EXACT_DROP_ABOVE_Y` farther than `EXACT_SAME_POINT` from the key's next vertex is
-//! skipped. The alignment counts only when every key vertex is used up to S1's count and
-//! every landmark lands on its counterpart; otherwise the exact count is not printed.
+//! skipped. The alignment counts only when every landmark lands on its counterpart; otherwise the exact count is not printed. It is counted on
+//! the S1 faces whose three vertices have a counterpart (on wry, all but the top of the
+//! forehead).
 
 use conformap_mesh::TriMesh;
 use conformap_morph::quality::{face_normal, largest_patch, point_triangle_distance};
@@ -90,12 +91,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         match exact(s1, sk) {
             Some(map) => {
+                // S1's faces whose three vertices have a counterpart
+                let faces: Vec<[u32; 3]> = m
+                    .faces()
+                    .iter()
+                    .filter(|f| f.iter().all(|&v| map[v as usize] != u32::MAX))
+                    .copied()
+                    .collect();
                 let frame: Vec<[f64; 3]> = map
                     .iter()
-                    .map(|&j| sk.mesh.positions()[j as usize])
+                    .map(|&j| {
+                        let p = sk.mesh.positions();
+                        p.get(j as usize).copied().unwrap_or([0.0; 3])
+                    })
                     .collect();
-                let (e, ep) = count(&near, &frame, m.faces());
-                println!("; exact correspondence {} (largest patch {ep})", e.len());
+                let (e, ep) = count(&near, &frame, &faces);
+                println!(
+                    "; exact correspondence {} (largest patch {ep}) of the {} faces it covers",
+                    e.len(),
+                    faces.len()
+                );
             }
             None => println!("; no exact correspondence"),
         }
@@ -143,7 +158,11 @@ fn exact(s1: &Surface, sk: &Surface) -> Option<Vec<u32>> {
     let mut map = Vec::with_capacity(p1.len());
     let mut j = 0usize;
     for p in p1 {
-        let q = *pk.get(j)?;
+        let Some(&q) = pk.get(j) else {
+            // past the key's last vertex: S1 vertices its crop dropped
+            map.push(u32::MAX);
+            continue;
+        };
         let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
         if p[1] > EXACT_DROP_ABOVE_Y && d > EXACT_SAME_POINT {
             // dropped by the key's crop: S1 vertex without a counterpart
@@ -159,14 +178,7 @@ fn exact(s1: &Surface, sk: &Surface) -> Option<Vec<u32>> {
         .iter()
         .zip(sk.landmarks.vertices())
         .all(|(&a, &b)| map[a as usize] == b);
-    // every S1 vertex used by a face needs a counterpart
-    let complete = s1
-        .mesh
-        .faces()
-        .iter()
-        .flatten()
-        .all(|&v| map[v as usize] != u32::MAX);
-    (landmarks_agree && complete).then_some(map)
+    landmarks_agree.then_some(map)
 }
 
 /// Nearest triangle of a mesh to a point: a uniform grid of cells (side twice the mean

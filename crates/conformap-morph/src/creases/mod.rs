@@ -134,6 +134,26 @@ fn ccw(lp: &[u32], disk: &[Complex64]) -> Vec<u32> {
     out
 }
 
+/// Which arc length the rim vertices share between anchors ([`rim_targets`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ArcLength {
+    /// Along the rim on each surface, in 3D.
+    Surface,
+    /// Along the rim in the disk (S1's, and the key's registered disk).
+    Disk,
+}
+
+/// Cumulative arc length in the disk at every vertex of the closed loop `lp` from
+/// `lp[0]`, and the whole length as a last entry (`n + 1` values).
+fn disk_arc_lengths(lp: &[u32], disk: &[Complex64]) -> Vec<f64> {
+    let n = lp.len();
+    let mut s = vec![0.0; n + 1];
+    for i in 0..n {
+        s[i + 1] = s[i] + (disk[lp[i] as usize] - disk[lp[(i + 1) % n] as usize]).norm();
+    }
+    s
+}
+
 /// Cumulative arc length (in 3D, on the surface `positions`) at every vertex of the
 /// closed loop `lp` from `lp[0]`, and the whole length as a last entry (`n + 1` values).
 fn arc_lengths(lp: &[u32], positions: &[[f64; 3]]) -> Vec<f64> {
@@ -426,15 +446,17 @@ pub(crate) struct RimTarget {
 /// the disk, and how they were anchored: the loops are cut at their anchors (`anchors`:
 /// the points nearest to the landmarks near the loops, else the crossings of a ray from
 /// the loop's centre towards the nearest landmark), and every vertex of S1's loop goes
-/// to the same share of 3D arc length between the same two anchors on the key loop (with
-/// one anchor: the same share of the whole loop from it). Order along the loop is kept
-/// and no two vertices meet. `edge_face` gives, for a key-surface edge `(min, max)`, a
-/// face holding it.
+/// to the same share of arc length (`arc`) between the same two anchors on the key loop
+/// (with one anchor: the same share of the whole loop from it). Order along the loop is
+/// kept and no two vertices meet. `edge_face` gives, for a key-surface edge `(min, max)`,
+/// a face holding it.
 ///
-/// 3D arc length is each surface's own length along the rim (a lip stretched evenly
-/// keeps its points at the same shares). Shares of arc length in the disk, used before,
-/// crowd S1's rim vertices towards the round mouth's sides (the disk map widens the
-/// ends of S1's slit): 0.24 of the opening off the exact correspondence against 0.06.
+/// 3D arc length ([`ArcLength::Surface`], first choice) is each surface's own length
+/// along the rim (a lip stretched evenly keeps its points at the same shares). Shares of
+/// arc length in the disk crowd S1's rim vertices towards the round mouth's sides (the
+/// disk map widens the ends of S1's slit): 0.24 of the opening off the exact
+/// correspondence against 0.06; but on wry's raised mouth corner they fold fewer faces
+/// of S1's moved disk, so the carrying takes them where they fold fewer.
 /// The loops were earlier cut at their two vertices farthest apart in 3D, paired by
 /// distance in the disk: the corners of a slit, which a round rim (a mouth pursed into
 /// an "O") does not have; there the pairing turned S1's mouth by a quarter turn.
@@ -443,14 +465,18 @@ pub(crate) fn rim_targets(
     onto: &LoopOn<'_>,
     facesk: &[[u32; 3]],
     edge_face: &HashMap<(u32, u32), u32>,
+    arc: ArcLength,
 ) -> (Vec<RimTarget>, Anchoring) {
     let (disk1, diskk) = (from.disk, onto.disk);
     let a = ccw(from.vertices, disk1);
     let b = ccw(onto.vertices, diskk);
-    let (la, ub) = (
-        arc_lengths(&a, from.positions),
-        arc_lengths(&b, onto.positions),
-    );
+    let (la, ub) = match arc {
+        ArcLength::Surface => (
+            arc_lengths(&a, from.positions),
+            arc_lengths(&b, onto.positions),
+        ),
+        ArcLength::Disk => (disk_arc_lengths(&a, disk1), disk_arc_lengths(&b, diskk)),
+    };
     let (na, m) = (a.len(), b.len());
     let (whole_a, whole_b) = (la[na], ub[m]);
     let (anchor, how) = anchors(&a, from, &la, &b, onto, &ub);
@@ -588,7 +614,7 @@ mod tests {
         onto: &LoopOn<'_>,
         faces: &[[u32; 3]],
     ) -> (HashMap<u32, Complex64>, Anchoring) {
-        let (t, how) = rim_targets(from, onto, faces, &edge_faces(faces));
+        let (t, how) = rim_targets(from, onto, faces, &edge_faces(faces), ArcLength::Surface);
         (t.into_iter().map(|t| (t.vertex, t.disk)).collect(), how)
     }
 

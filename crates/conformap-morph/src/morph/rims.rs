@@ -12,8 +12,8 @@ use super::report::CreaseSummary;
 use super::{MorphOptions, Surface};
 use crate::creases::untangle::{folded, untangle, Rings};
 use crate::creases::{
-    anchor_points, crease_loops, edge_faces, match_loops, rim_targets, Anchoring, LoopOn,
-    RimExtension, RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
+    anchor_points, crease_loops, edge_faces, match_loops, rim_targets, Anchoring, ArcLength,
+    LoopOn, RimExtension, RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
 };
 use crate::register::warp_landmarks;
 use crate::{MorphError, WarpOptions, WarpReport};
@@ -157,7 +157,7 @@ struct RimMoves {
 
 /// The moves of S1's matched loop vertices onto key surface `k`'s loops (registered disk
 /// `hk`), with their targets.
-fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> RimMoves {
+fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64], arc: ArcLength) -> RimMoves {
     let pairs = match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk);
     let edge_face = edge_faces(sk.faces());
     let mut out = RimMoves {
@@ -170,7 +170,7 @@ fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> RimMoves
     };
     for &(i, j) in &pairs {
         let (from, onto) = r.loop_pair(k, sk, hk, i, j);
-        let (targets, how) = rim_targets(&from, &onto, sk.faces(), &edge_face);
+        let (targets, how) = rim_targets(&from, &onto, sk.faces(), &edge_face, arc);
         match how {
             Anchoring::Landmarks(n) => {
                 out.landmark_anchored += 1;
@@ -231,16 +231,30 @@ pub(super) fn carry_rims(
         let u = untangle(&mut query, r.s1.faces(), &r.rings, &r.free, r.sigma);
         (query, at_extension, u)
     };
-    let mut found = rim_moves(r, k, sk, key.map);
-    let (mut query, at_extension, mut untangled) = place(&found.moves);
-    summary.folded_at_full_move = at_extension;
+    let mut arc = ArcLength::Surface;
+    let mut found = rim_moves(r, k, sk, key.map, arc);
+    let (mut query, mut at_extension, mut untangled) = place(&found.moves);
     let mut folding = folded_centroids(r.s1.faces(), &query, r.sigma);
+    if !folding.is_empty() {
+        // where shares of 3D arc length fold S1's disk, shares of disk arc length may
+        // fold less (wry's raised mouth corner: 24 faces after the untangling, against
+        // 10): the one that folds fewer faces
+        let other = rim_moves(r, k, sk, key.map, ArcLength::Disk);
+        let (q, at, u) = place(&other.moves);
+        let f = folded_centroids(r.s1.faces(), &q, r.sigma);
+        if f.len() < folding.len() {
+            (arc, found, query, at_extension, untangled, folding) =
+                (ArcLength::Disk, other, q, at, u, f);
+        }
+    }
+    summary.folded_at_full_move = at_extension;
     summary.folded_after_untangling = folding.len();
+    summary.arc_length_in_disk = arc == ArcLength::Disk;
     if !folding.is_empty() {
         if let Some((corners, report)) = warp_corners(r, k, &mut key, &folding)? {
             summary.warped_corners = corners;
             summary.corner_warp = Some(report);
-            found = rim_moves(r, k, sk, key.map);
+            found = rim_moves(r, k, sk, key.map, arc);
             (query, _, untangled) = place(&found.moves);
             folding = folded_centroids(r.s1.faces(), &query, r.sigma);
         }
