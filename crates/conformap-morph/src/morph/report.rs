@@ -103,6 +103,18 @@ pub struct CreaseSummary {
     pub loops: usize,
     /// Pairs matched (each S1 loop and the loop of this surface nearest to it in the disk).
     pub matched: usize,
+    /// Matched pairs cut at the points nearest to the landmarks near them (the mouth and
+    /// eye corners of the shared faces): S1's loop vertices go to the same share of arc
+    /// length between the same two anchors.
+    pub landmark_anchored: usize,
+    /// Landmarks used as anchors, over all matched pairs.
+    pub landmark_anchors: usize,
+    /// Matched pairs with no landmark near them, anchored where the ray from S1's
+    /// loop's centre towards the nearest landmark crosses them.
+    pub ray_anchored: usize,
+    /// The rim vertices share arc length in the disk (S1's and the registered disk),
+    /// not along the rims in 3D: taken only when it folds fewer faces of S1's moved disk.
+    pub arc_length_in_disk: bool,
     /// Vertices of S1 placed exactly on this surface's loops (their whole move applied).
     pub rim_vertices: usize,
     /// The largest move (in the disk) of an S1 loop vertex onto this surface's loop.

@@ -12,8 +12,8 @@ use super::report::CreaseSummary;
 use super::{MorphOptions, Surface};
 use crate::creases::untangle::{folded, untangle, Rings};
 use crate::creases::{
-    corner_vertices, crease_loops, edge_faces, match_loops, rim_targets, LoopOn, RimExtension,
-    RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
+    anchor_points, crease_loops, edge_faces, match_loops, rim_targets, Anchoring, ArcLength,
+    LoopOn, RimExtension, RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
 };
 use crate::register::warp_landmarks;
 use crate::{MorphError, WarpOptions, WarpReport};
@@ -31,8 +31,8 @@ pub(super) struct Rims<'a> {
     rings: Rings,
     s1: &'a TriMesh,
     s1_disk: &'a [Complex64],
-    /// S1's landmark vertices.
-    landmarks: &'a [u32],
+    /// `surface_landmarks[k]`: the landmark vertices of surface `k` (the loops' anchors).
+    surface_landmarks: Vec<&'a [u32]>,
     /// Orientation of S1's disk (the sign of its boundary polygon's area).
     sigma: f64,
 }
@@ -51,11 +51,13 @@ impl<'a> Rims<'a> {
             LoopOn {
                 vertices: &self.loops[0][i],
                 disk: self.s1_disk,
+                landmarks: self.surface_landmarks[0],
                 positions: self.s1.positions(),
             },
             LoopOn {
                 vertices: &self.loops[k][j],
                 disk: hk,
+                landmarks: self.surface_landmarks[k],
                 positions: sk.positions(),
             },
         )
@@ -96,7 +98,7 @@ impl<'a> Rims<'a> {
             extension,
             free: held.iter().map(|&h| !h).collect(),
             rings: Rings::new(s1.faces(), s1.num_vertices()),
-            landmarks: surfaces[0].landmarks.vertices(),
+            surface_landmarks: surfaces.iter().map(|s| s.landmarks.vertices()).collect(),
             s1,
             s1_disk,
             sigma: if area >= 0.0 { 1.0 } else { -1.0 },
@@ -104,14 +106,15 @@ impl<'a> Rims<'a> {
     }
 }
 
-/// The corners of S1's loops and of key surface `k`'s (`sk`, registered disk `hk`),
-/// loops matched as [`carry_rims`] matches them: pairs `(S1 vertex, key vertex)`.
-fn corner_pairs(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> Vec<(u32, u32)> {
+/// The anchors of S1's loops and of key surface `k`'s (`sk`, registered disk `hk`),
+/// loops matched as [`carry_rims`] matches them: pairs (S1's anchor in S1's disk, the
+/// key loop's vertex at its anchor).
+fn anchor_pairs(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> Vec<(Complex64, u32)> {
     match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk)
         .into_iter()
         .flat_map(|(i, j)| {
             let (from, onto) = r.loop_pair(k, sk, hk, i, j);
-            corner_vertices(&from, &onto)
+            anchor_points(&from, &onto)
         })
         .collect()
 }
@@ -141,26 +144,46 @@ pub(super) struct KeyDisk<'k> {
     pub warp: WarpOptions,
 }
 
+/// What [`rim_moves`] found: the moves of S1's matched loop vertices, their targets, and
+/// how many loops were matched, anchored at landmarks (and at how many), or by a ray.
+struct RimMoves {
+    moves: Vec<Complex64>,
+    targets: Vec<RimTarget>,
+    matched: usize,
+    landmark_anchored: usize,
+    landmark_anchors: usize,
+    ray_anchored: usize,
+}
+
 /// The moves of S1's matched loop vertices onto key surface `k`'s loops (registered disk
-/// `hk`), with their targets, and the number of matched loops.
-fn rim_moves(
-    r: &Rims<'_>,
-    k: usize,
-    sk: &TriMesh,
-    hk: &[Complex64],
-) -> (Vec<Complex64>, Vec<RimTarget>, usize) {
+/// `hk`), with their targets.
+fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64], arc: ArcLength) -> RimMoves {
     let pairs = match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk);
     let edge_face = edge_faces(sk.faces());
-    let mut moves = vec![Complex64::new(0.0, 0.0); r.s1_disk.len()];
-    let mut targets = Vec::new();
+    let mut out = RimMoves {
+        moves: vec![Complex64::new(0.0, 0.0); r.s1_disk.len()],
+        targets: Vec::new(),
+        matched: pairs.len(),
+        landmark_anchored: 0,
+        landmark_anchors: 0,
+        ray_anchored: 0,
+    };
     for &(i, j) in &pairs {
         let (from, onto) = r.loop_pair(k, sk, hk, i, j);
-        for t in rim_targets(&from, &onto, sk.faces(), &edge_face) {
-            moves[t.vertex as usize] = t.disk - r.s1_disk[t.vertex as usize];
-            targets.push(t);
+        let (targets, how) = rim_targets(&from, &onto, sk.faces(), &edge_face, arc);
+        match how {
+            Anchoring::Landmarks(n) => {
+                out.landmark_anchored += 1;
+                out.landmark_anchors += n;
+            }
+            Anchoring::Ray => out.ray_anchored += 1,
+        }
+        for t in targets {
+            out.moves[t.vertex as usize] = t.disk - r.s1_disk[t.vertex as usize];
+            out.targets.push(t);
         }
     }
-    (moves, targets, pairs.len())
+    out
 }
 
 /// Moves S1's loops onto those of key surface `k`: matched loops, targets, the harmonic
@@ -208,23 +231,41 @@ pub(super) fn carry_rims(
         let u = untangle(&mut query, r.s1.faces(), &r.rings, &r.free, r.sigma);
         (query, at_extension, u)
     };
-    let (mut moves, mut targets, matched) = rim_moves(r, k, sk, key.map);
-    let (mut query, at_extension, mut untangled) = place(&moves);
-    summary.matched = matched;
-    summary.folded_at_full_move = at_extension;
+    let mut arc = ArcLength::Surface;
+    let mut found = rim_moves(r, k, sk, key.map, arc);
+    let (mut query, mut at_extension, mut untangled) = place(&found.moves);
     let mut folding = folded_centroids(r.s1.faces(), &query, r.sigma);
+    if !folding.is_empty() {
+        // where shares of 3D arc length fold S1's disk, shares of disk arc length may
+        // fold less (wry's raised mouth corner: 24 faces after the untangling, against
+        // 10): the one that folds fewer faces
+        let other = rim_moves(r, k, sk, key.map, ArcLength::Disk);
+        let (q, at, u) = place(&other.moves);
+        let f = folded_centroids(r.s1.faces(), &q, r.sigma);
+        if f.len() < folding.len() {
+            (arc, found, query, at_extension, untangled, folding) =
+                (ArcLength::Disk, other, q, at, u, f);
+        }
+    }
+    summary.folded_at_full_move = at_extension;
     summary.folded_after_untangling = folding.len();
+    summary.arc_length_in_disk = arc == ArcLength::Disk;
     if !folding.is_empty() {
         if let Some((corners, report)) = warp_corners(r, k, &mut key, &folding)? {
             summary.warped_corners = corners;
             summary.corner_warp = Some(report);
-            let m;
-            (moves, targets, m) = rim_moves(r, k, sk, key.map);
-            summary.matched = m;
-            (query, _, untangled) = place(&moves);
+            found = rim_moves(r, k, sk, key.map, arc);
+            (query, _, untangled) = place(&found.moves);
             folding = folded_centroids(r.s1.faces(), &query, r.sigma);
         }
     }
+    summary.matched = found.matched;
+    summary.landmark_anchored = found.landmark_anchored;
+    summary.landmark_anchors = found.landmark_anchors;
+    summary.ray_anchored = found.ray_anchored;
+    let RimMoves {
+        moves, mut targets, ..
+    } = found;
     summary.largest_move = moves.iter().map(|d| d.norm()).fold(0.0, f64::max);
     // the share of its move every loop vertex gets: 1, halved (again) near the faces of
     // S1's moved disk that still fold
@@ -282,13 +323,13 @@ fn warp_corners(
     let sk = key.mesh;
     let near = |z: Complex64| folding.iter().any(|&c| (c - z).norm() < RIM_HALVING_RADIUS);
     let boundary = sk.boundary_flags();
-    let corners: Vec<(u32, u32)> = corner_pairs(r, k, sk, key.map)
+    let corners: Vec<(Complex64, u32)> = anchor_pairs(r, k, sk, key.map)
         .into_iter()
         .filter(|&(a, b)| {
-            near(r.s1_disk[a as usize])
+            near(a)
                 && !key.landmarks.contains(&b)
-                && !r.landmarks.contains(&a)
                 && !boundary[b as usize]
+                && (key.map[b as usize] - a).norm() > 0.0
         })
         .collect();
     if corners.is_empty() {
@@ -299,7 +340,7 @@ fn warp_corners(
     let mut goals: Vec<Complex64> = points.iter().map(|&v| key.map[v as usize]).collect();
     for &(a, b) in &corners {
         points.push(b);
-        goals.push(r.s1_disk[a as usize]);
+        goals.push(a);
     }
     let area = sk
         .boundary_loops()
