@@ -67,7 +67,15 @@ pub fn split_overlapping(piece: Piece, depth: usize) -> Result<Vec<Piece>, Atlas
 /// to boundary vertex `b` (a boundary vertex on the way counts four times its edge's
 /// length: thin strips may need one); `None` when there is no such path or it does not
 /// separate.
-fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
+pub(crate) fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
+    let path = shortest_path(mesh, a, b)?;
+    sides(mesh, &path)
+}
+
+/// The half-edges of the shortest path of interior edges from boundary vertex `a` to
+/// boundary vertex `b`, from `a` on (a boundary vertex on the way counts four times its
+/// edge's length); `None` when there is none.
+pub(crate) fn shortest_path(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<usize>> {
     let n = mesh.num_vertices();
     let mut on_boundary = vec![false; n];
     for &v in mesh.boundary_loops().iter().flatten() {
@@ -118,13 +126,25 @@ fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
     if !dist[b as usize].is_finite() {
         return None;
     }
-    let mut on_path = vec![false; opp.len()];
+    let mut path = Vec::new();
     let mut v = b;
     while v != a {
         let h = via[v as usize];
+        path.push(h);
+        v = mesh.halfedge_vertices(h).0;
+    }
+    path.reverse();
+    Some(path)
+}
+
+/// The faces on the two sides of `path` (half-edges of interior edges), flooded across
+/// every interior edge not on it; `None` when it does not separate.
+pub(crate) fn sides(mesh: &TriMesh, path: &[usize]) -> Option<Vec<Vec<u32>>> {
+    let opp = mesh.opposite_halfedges();
+    let mut on_path = vec![false; opp.len()];
+    for &h in path {
         on_path[h] = true;
         on_path[opp[h] as usize] = true;
-        v = mesh.halfedge_vertices(h).0;
     }
     // faces flooded across every interior edge not on the path
     let nf = mesh.num_faces();
