@@ -10,7 +10,7 @@
 use num_complex::Complex64;
 
 use crate::build::ComponentChart;
-use crate::chart::split::{shortest_path, sides, sub_piece};
+use crate::chart::split::{shortest_path, sides, sub_piece, PathGraph};
 use crate::chart::Piece;
 use crate::error::AtlasError;
 use crate::hull::min_square_rect;
@@ -115,8 +115,10 @@ pub(crate) fn cut_necks(
             // each candidate judged by its parts' outlines (the loop's two arcs closed by
             // the path), the parts built for the best one only
             let mut best: Option<(Packing, Vec<usize>)> = None;
-            for (i, j) in candidates(piece, &lp) {
-                let Some(path) = shortest_path(&piece.mesh, lp[i], lp[j]) else {
+            let pairs = candidates(piece, &lp);
+            let graph = PathGraph::new(&piece.mesh);
+            for (i, j) in pairs {
+                let Some(path) = shortest_path(&piece.mesh, &graph, lp[i], lp[j]) else {
                     continue;
                 };
                 let inner: Vec<u32> = path[..path.len() - 1]
