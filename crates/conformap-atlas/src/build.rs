@@ -13,7 +13,7 @@ use crate::chart::{
 };
 use crate::cones::ConeOptions;
 use crate::error::AtlasError;
-use crate::pack::{pack_charts, PackOptions, Packing};
+use crate::pack::{PackOptions, Packing};
 
 /// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,7 +116,7 @@ pub struct Atlas {
 ///
 /// # Errors
 /// [`AtlasError::Component`] naming the component whose mesh is not valid, and every error
-/// of [`chart_component`] and [`pack_charts`].
+/// of [`chart_component`] and [`crate::pack_charts`].
 pub fn build_atlas(
     positions: &[[f64; 3]],
     faces: &[[u32; 3]],
@@ -148,12 +148,7 @@ pub fn build_atlas(
             pieces,
         });
     }
-    let outlines: Vec<Vec<[f64; 2]>> = charts
-        .iter()
-        .flat_map(|c| &c.pieces)
-        .map(|p| p.uv.iter().map(|z| [z.re, z.im]).collect())
-        .collect();
-    let packing = pack_charts(&outlines, &options.pack)?;
+    let packing = crate::neck::cut_necks(&mut charts, &options.pack)?;
     let mut uv = vec![[0.0; 2]; 3 * faces.len()];
     let mut places = packing.charts.iter();
     for c in &charts {

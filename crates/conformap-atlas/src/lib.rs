@@ -12,9 +12,13 @@
 //! - [`build_atlas`] → [`Atlas`]: the whole atlas of a triangle soup (every component
 //!   charted, self-overlapping charts split, everything packed), with its [`AtlasReport`].
 //! - [`chart`]: one component's chart ([`chart_component`]), its quality.
-//! - [`pack_charts`] → [`Packing`]: each chart turned to its smallest bounding rectangle,
-//!   scaled by one common factor (the largest that fits) and placed by a skyline packer,
-//!   configured by [`PackOptions`] (resolution, margin in texels, rotation).
+//! - [`pack_charts`] / [`pack_outlined`] → [`Packing`]: the charts scaled by one common
+//!   factor (the largest that fits), placed both as rectangles (each turned to its
+//!   smallest bounding rectangle, a skyline packer) and by their outlines (a profile
+//!   packer: each chart dropped onto the others where it rests lowest, its bays taking
+//!   their spikes), the better kept; configured by [`PackOptions`] (resolution, margin in
+//!   texels, rotation). [`build_atlas`] also cuts a chart that sets the scale alone at a
+//!   neck of its outline when the parts pack at least 3 % denser.
 //! - [`cones`]: the cone metric of a set of cone singularities ([`ConeMetric`], one
 //!   factorization) and their automatic placement with the least area spread
 //!   ([`place_cones`]).
@@ -47,7 +51,9 @@ pub mod chart;
 pub mod cones;
 mod error;
 pub mod hull;
+mod neck;
 mod pack;
+mod profile;
 mod skyline;
 mod summary;
 
@@ -55,5 +61,8 @@ pub use build::{build_atlas, split_components, Atlas, AtlasOptions, AtlasReport,
 pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
-pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};
+pub use pack::{
+    pack_charts, pack_outlined, ChartPlacement, PackOptions, Packing, PROFILE_CELL, PROFILE_REFINE,
+    PROFILE_REFINE_STEPS, PROFILE_STEPS,
+};
 pub use summary::atlas_peak_bytes;

@@ -116,7 +116,46 @@ impl Packing {
 /// a resolution of 0 or a negative margin, [`AtlasError::TooManyCharts`] when the margins
 /// alone overflow the square.
 pub fn pack_charts(charts: &[Vec<[f64; 2]>], options: &PackOptions) -> Result<Packing, AtlasError> {
+    let hulls: Vec<Vec<Vec<[f64; 2]>>> = charts
+        .iter()
+        .map(|c| vec![crate::hull::convex_hull(c)])
+        .collect();
+    pack_outlined(charts, &hulls, options)
+}
+
+/// [`pack_charts`] with each chart's outline: its boundary loops (closed polylines of
+/// layout points; every point of the chart lies inside its outer loop). The charts are
+/// packed both as rectangles and by their outlines (a profile packer: each chart dropped
+/// onto the others at the column where it rests lowest, its bays taking the spikes of
+/// the charts below), and the larger common scale is kept.
+///
+/// # Errors
+/// As [`pack_charts`]; [`AtlasError::InvalidOption`] when `outlines` does not hold one
+/// entry per chart.
+pub fn pack_outlined(
+    charts: &[Vec<[f64; 2]>],
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    options: &PackOptions,
+) -> Result<Packing, AtlasError> {
+    pack_with(charts, outlines, options, true)
+}
+
+/// [`pack_outlined`]; with `refine` false, the profile packer stops at its coarse grid
+/// (a tentative packing: a neck cut is judged by it).
+pub(crate) fn pack_with(
+    charts: &[Vec<[f64; 2]>],
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    options: &PackOptions,
+    refine: bool,
+) -> Result<Packing, AtlasError> {
     check(charts, options)?;
+    if outlines.len() != charts.len() {
+        return Err(AtlasError::InvalidOption {
+            name: "outlines",
+            value: outlines.len().to_string(),
+            why: "one outline per chart",
+        });
+    }
     let too_many = AtlasError::TooManyCharts {
         charts: charts.len(),
         margin: options.margin_texels,
@@ -153,9 +192,194 @@ pub fn pack_charts(charts: &[Vec<[f64; 2]>], options: &PackOptions) -> Result<Pa
         }
     }
     let ((s, spots, height), order, rects) = best.ok_or(too_many)?;
-    Ok(placements(
-        charts, rects, &order, &spots, s, height, options,
-    ))
+    let by_rects = placements(charts, rects, &order, &spots, s, height, options);
+    Ok(
+        match by_outlines(outlines, &area_rects, &square_rects, s, options, refine) {
+            Some(p) if p.scale > by_rects.scale => Packing {
+                efficiency: by_rects.efficiency * (p.scale / by_rects.scale).powi(2),
+                ..p
+            },
+            _ => by_rects,
+        },
+    )
+}
+
+/// Bisection steps of the profile packer's common scale on its coarse grid, between the
+/// rectangle packer's scale and the area bound, in its first order: 10 (the scale to 2⁻¹⁰
+/// of that interval, a tenth of a percent or so); the second order gets half as many,
+/// above the first's scale.
+pub const PROFILE_STEPS: usize = 10;
+
+/// Texels per column of the profile packer's coarse grid: 4 (at 1024 texels, 256 columns:
+/// each step of the bisection 16 times faster than at one texel, a chart's outline
+/// rounded out by at most 4 texels).
+pub const PROFILE_CELL: f64 = 4.0;
+
+/// Steps of the bisection at one texel per column above the coarse grid's scale, up to
+/// [`PROFILE_REFINE`] higher: 4 (an eighth of a percent).
+pub const PROFILE_REFINE_STEPS: usize = 4;
+
+/// How far above the coarse grid's scale the one-texel grid is searched: 2 % (the
+/// coarse grid's rounding, 4 texels on charts of a few hundred).
+pub const PROFILE_REFINE: f64 = 0.02;
+
+/// Each chart's outline in the orientations the profile packer tries: four quarter turns
+/// of its smallest-area rectangle (one when `turn` is off), and as many of its smallest
+/// square for a chart that could fill a quarter of the square alone (the rule of the
+/// rectangle packer's mixed turns: a small chart's square turn seldom packs better, and
+/// every orientation costs a profile per packing).
+fn turned_charts(
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    area_rects: &[BoundingRect],
+    square_rects: &[BoundingRect],
+    options: &PackOptions,
+) -> Vec<Vec<crate::profile::Turned>> {
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let turns: &[f64] = if options.turn {
+        &[0.0, quarter, 2.0 * quarter, 3.0 * quarter]
+    } else {
+        &[0.0]
+    };
+    let total: f64 = area_rects.iter().map(|r| r.size[0] * r.size[1]).sum();
+    outlines
+        .iter()
+        .zip(area_rects.iter().zip(square_rects))
+        .map(|(o, (a, q))| {
+            let mut angles: Vec<f64> = turns.iter().map(|t| a.angle + t).collect();
+            let large = a.size[0] * a.size[1] > 0.25 * total;
+            if large && (q.angle - a.angle).abs() > 1e-9 {
+                angles.extend(turns.iter().map(|t| q.angle + t));
+            }
+            angles
+                .into_iter()
+                .map(|angle| crate::profile::Turned::new(o, angle))
+                .collect()
+        })
+        .collect()
+}
+
+/// The profile packer's two orders: largest rectangle area first, widest first.
+fn orders(area_rects: &[BoundingRect]) -> [Vec<usize>; 2] {
+    let area = |k: usize| area_rects[k].size[0] * area_rects[k].size[1];
+    let mut by_area: Vec<usize> = (0..area_rects.len()).collect();
+    by_area.sort_by(|&a, &b| area(b).total_cmp(&area(a)).then(a.cmp(&b)));
+    let mut by_width: Vec<usize> = (0..area_rects.len()).collect();
+    by_width.sort_by(|&a, &b| {
+        area_rects[b].size[0]
+            .total_cmp(&area_rects[a].size[0])
+            .then(a.cmp(&b))
+    });
+    [by_area, by_width]
+}
+
+/// Whether the profile packer fits `outlines` (every point of each chart inside its loops)
+/// into the square at common scale `scale` (texture units per layout unit, as
+/// [`Packing::scale`]) on its coarse grid, in either of its orders: one packing each, a
+/// quick test of whether a change to the charts can beat a scale reached before.
+pub(crate) fn fits_at(outlines: &[Vec<Vec<[f64; 2]>>], scale: f64, options: &PackOptions) -> bool {
+    let points: Vec<Vec<[f64; 2]>> = outlines.iter().map(|o| o.concat()).collect();
+    let area_rects: Vec<BoundingRect> = points.iter().map(|c| min_area_rect(c)).collect();
+    let square_rects: Vec<BoundingRect> = points.iter().map(|c| min_square_rect(c)).collect();
+    let turned = turned_charts(outlines, &area_rects, &square_rects, options);
+    let n = options.resolution;
+    let cell = if n >= 64 { PROFILE_CELL } else { 1.0 };
+    orders(&area_rects).iter().any(|order| {
+        crate::profile::pack(
+            &turned,
+            order,
+            scale * n as f64,
+            n,
+            options.margin_texels,
+            cell,
+            None,
+        )
+        .is_some()
+    })
+}
+
+/// The outlines packed by the profile packer at the largest scale it reaches above
+/// `floor` (the rectangle packer's), each chart tried in four quarter turns of its
+/// smallest-area rectangle and of its smallest square (one of each when `turn` is off),
+/// two orders (largest area first, widest first), first on the coarse grid, then, when
+/// `refine`, at one texel per column; `None` when it does not beat `floor`.
+pub(crate) fn by_outlines(
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    area_rects: &[BoundingRect],
+    square_rects: &[BoundingRect],
+    floor: f64,
+    options: &PackOptions,
+    refine: bool,
+) -> Option<Packing> {
+    use crate::profile::pack;
+    let n = options.resolution;
+    let m = options.margin_texels;
+    let turned = turned_charts(outlines, area_rects, square_rects, options);
+    let [by_area, by_width] = orders(area_rects);
+    let hull_area: f64 = outlines
+        .iter()
+        .map(|o| {
+            o.first()
+                .map_or(0.0, |l| polygon_area(&crate::hull::convex_hull(l)))
+        })
+        .sum();
+    if !(hull_area > 0.0) {
+        return None;
+    }
+    let ceiling = n as f64 / hull_area.sqrt();
+    let cell = if n >= 64 { PROFILE_CELL } else { 1.0 };
+    // (scale, order, places, height)
+    let mut best: Option<(f64, &[usize], Vec<crate::profile::Place>, f64)> = None;
+    // the second order searched above the first's scale, in half the steps
+    for (order, steps) in [
+        (&by_area[..], PROFILE_STEPS),
+        (&by_width[..], PROFILE_STEPS / 2),
+    ] {
+        let (mut lo, mut hi) = (best.as_ref().map_or(floor, |b| b.0), ceiling.max(floor));
+        for _ in 0..steps {
+            let mid = 0.5 * (lo + hi);
+            match pack(&turned, order, mid, n, m, cell, None) {
+                Some((places, height)) => {
+                    lo = mid;
+                    if best.as_ref().is_none_or(|b| mid > b.0) {
+                        best = Some((mid, order, places, height));
+                    }
+                }
+                None => hi = mid,
+            }
+        }
+    }
+    let (mut s, order, mut places, mut height) = best?;
+    if refine && cell > 1.0 {
+        // each chart in the orientation the coarse grid chose
+        let fixed: Vec<usize> = places.iter().map(|p| p.turn).collect();
+        let (mut lo, mut hi) = (s, s * (1.0 + PROFILE_REFINE));
+        for _ in 0..PROFILE_REFINE_STEPS {
+            let mid = 0.5 * (lo + hi);
+            match pack(&turned, order, mid, n, m, 1.0, Some(&fixed)) {
+                Some(found) => {
+                    lo = mid;
+                    (s, places, height) = (mid, found.0, found.1);
+                }
+                None => hi = mid,
+            }
+        }
+    }
+    let nf = n as f64;
+    let charts = places
+        .iter()
+        .zip(&turned)
+        .map(|(p, t)| ChartPlacement {
+            angle: t[p.turn].angle,
+            scale: s / nf,
+            offset: [p.offset[0] / nf, p.offset[1] / nf],
+        })
+        .collect();
+    Some(Packing {
+        charts,
+        scale: s / nf,
+        efficiency: 0.0,
+        used_height: height / nf,
+    })
 }
 
 /// A packing at one scale: the scale, the spots (in packing order) and the height used.

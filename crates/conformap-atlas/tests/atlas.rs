@@ -50,6 +50,60 @@ fn five_components_of_every_topology_share_the_square_without_overlap() {
         .all(|c| c.scale == atlas.packing.scale));
 }
 
+/// A flat 4 × 1 strip is one chart that fills a third of its smallest square (5/√2 on the
+/// diagonal: 4 / 12.5 = 0.32); cut at its neck, the middle, its two halves stack into a
+/// 2 × 2 square. Every seam, the new one too, keeps its lengths exactly.
+#[test]
+fn a_long_strip_is_cut_at_its_middle_and_its_halves_stacked() {
+    let (nx, ny) = (32u32, 8u32);
+    let mut p = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            // interior vertices nudged off the grid (a grid packed to whole texels would
+            // put vertices on texel centres, where the raster's fill rule is ambiguous)
+            let inner = i > 0 && i < nx && j > 0 && j < ny;
+            let nudge = if inner {
+                0.01 * ((i * 7 + j * 3) % 5) as f64
+            } else {
+                0.0
+            };
+            p.push([
+                (4.0 * i as f64 + nudge) / nx as f64,
+                (j as f64 + nudge) / ny as f64,
+                0.0,
+            ]);
+        }
+    }
+    let at = |i: u32, j: u32| j * (nx + 1) + i;
+    let mut f = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            f.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            f.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    let atlas = build_atlas(&p, &f, &AtlasOptions::default()).expect("atlas");
+    let r = &atlas.report;
+    assert_eq!(r.charts, 2, "{r:?}");
+    assert!(r.packing_efficiency > 0.85, "{r:?}");
+    assert_eq!(r.overlap.covered_twice, 0, "{r:?}");
+    assert_eq!(r.flipped, 0, "{r:?}");
+    assert!(r.seam_log_ratio_max < 1e-12, "{r:?}");
+    // the halves hold half of the strip each
+    let halves: Vec<usize> = atlas.charts[0]
+        .pieces
+        .iter()
+        .map(|q| q.faces.len())
+        .collect();
+    assert_eq!(halves.iter().sum::<usize>(), f.len());
+    assert!(
+        halves
+            .iter()
+            .all(|&n| n.abs_diff(f.len() / 2) <= f.len() / 16),
+        "{halves:?}"
+    );
+}
+
 /// Armadillo (thin limbs, obtuse triangles; its cones at π/4 folded 34 faces): no flipped
 /// face, nothing overlaps and every seam keeps its length; the atlas issue's bars against BFF's 8 cones
 /// (area spread 2.51, angle 1.47°, packing 0.40).

@@ -11,7 +11,7 @@
 mod cut;
 mod quality;
 mod repair;
-mod split;
+pub(crate) mod split;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};
 use conformap_mesh::{

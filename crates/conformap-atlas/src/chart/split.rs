@@ -67,27 +67,72 @@ pub fn split_overlapping(piece: Piece, depth: usize) -> Result<Vec<Piece>, Atlas
 /// to boundary vertex `b` (a boundary vertex on the way counts four times its edge's
 /// length: thin strips may need one); `None` when there is no such path or it does not
 /// separate.
-fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
-    let n = mesh.num_vertices();
-    let mut on_boundary = vec![false; n];
-    for &v in mesh.boundary_loops().iter().flatten() {
-        on_boundary[v as usize] = true;
+pub(crate) fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
+    let path = shortest_path(mesh, &PathGraph::new(mesh), a, b)?;
+    sides(mesh, &path)
+}
+
+/// The interior edges of a mesh as a graph for [`shortest_path`] (built once, searched
+/// from many pairs): per vertex, its outgoing interior half-edges and their ends.
+pub(crate) struct PathGraph {
+    /// Offsets into `out` per vertex (compressed rows).
+    start: Vec<usize>,
+    /// (end vertex, half-edge).
+    out: Vec<(u32, usize)>,
+    on_boundary: Vec<bool>,
+}
+
+impl PathGraph {
+    /// The graph of `mesh`'s interior edges.
+    pub(crate) fn new(mesh: &TriMesh) -> Self {
+        let n = mesh.num_vertices();
+        let mut on_boundary = vec![false; n];
+        for &v in mesh.boundary_loops().iter().flatten() {
+            on_boundary[v as usize] = true;
+        }
+        let opp = mesh.opposite_halfedges();
+        let mut start = vec![0usize; n + 1];
+        for (h, &o) in opp.iter().enumerate() {
+            if o != NO_HALFEDGE {
+                start[mesh.halfedge_vertices(h).0 as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut out = vec![(0u32, 0usize); start[n]];
+        for (h, &o) in opp.iter().enumerate() {
+            if o != NO_HALFEDGE {
+                let (x, y) = mesh.halfedge_vertices(h);
+                out[fill[x as usize]] = (y, h);
+                fill[x as usize] += 1;
+            }
+        }
+        Self {
+            start,
+            out,
+            on_boundary,
+        }
     }
-    let opp = mesh.opposite_halfedges();
+}
+
+/// The half-edges of the shortest path of interior edges of `mesh` (its [`PathGraph`]
+/// `graph`) from boundary vertex `a` to boundary vertex `b`, from `a` on (a boundary
+/// vertex on the way counts four times its edge's length); `None` when there is none.
+pub(crate) fn shortest_path(
+    mesh: &TriMesh,
+    graph: &PathGraph,
+    a: u32,
+    b: u32,
+) -> Option<Vec<usize>> {
+    let n = mesh.num_vertices();
+    let on_boundary = &graph.on_boundary;
     let p = mesh.positions();
     let len = |x: u32, y: u32| {
         let (q, r) = (p[x as usize], p[y as usize]);
         ((q[0] - r[0]).powi(2) + (q[1] - r[1]).powi(2) + (q[2] - r[2]).powi(2)).sqrt()
     };
-    // interior edges only; intermediate vertices interior
-    let mut adj: Vec<Vec<(u32, usize)>> = vec![Vec::new(); n];
-    for (h, &o) in opp.iter().enumerate() {
-        if o == NO_HALFEDGE {
-            continue;
-        }
-        let (x, y) = mesh.halfedge_vertices(h);
-        adj[x as usize].push((y, h));
-    }
     let mut dist = vec![f64::INFINITY; n];
     let mut via = vec![usize::MAX; n];
     let mut heap = BinaryHeap::new();
@@ -101,7 +146,8 @@ fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
             break;
         }
         // prefer interior vertices: a boundary vertex on the way costs a detour's worth
-        for &(w, h) in &adj[v as usize] {
+        let row = graph.start[v as usize]..graph.start[v as usize + 1];
+        for &(w, h) in &graph.out[row] {
             let nd = d + len(v, w)
                 * if on_boundary[w as usize] && w != b {
                     4.0
@@ -118,13 +164,25 @@ fn halves(mesh: &TriMesh, a: u32, b: u32) -> Option<Vec<Vec<u32>>> {
     if !dist[b as usize].is_finite() {
         return None;
     }
-    let mut on_path = vec![false; opp.len()];
+    let mut path = Vec::new();
     let mut v = b;
     while v != a {
         let h = via[v as usize];
+        path.push(h);
+        v = mesh.halfedge_vertices(h).0;
+    }
+    path.reverse();
+    Some(path)
+}
+
+/// The faces on the two sides of `path` (half-edges of interior edges), flooded across
+/// every interior edge not on it; `None` when it does not separate.
+pub(crate) fn sides(mesh: &TriMesh, path: &[usize]) -> Option<Vec<Vec<u32>>> {
+    let opp = mesh.opposite_halfedges();
+    let mut on_path = vec![false; opp.len()];
+    for &h in path {
         on_path[h] = true;
         on_path[opp[h] as usize] = true;
-        v = mesh.halfedge_vertices(h).0;
     }
     // faces flooded across every interior edge not on the path
     let nf = mesh.num_faces();

@@ -1,0 +1,270 @@
+//! Charts cut at a neck where that packs denser. One chart that bounds the common scale by
+//! itself (spot's single chart: an L of head and body) leaves most of its bounding square
+//! empty however it is turned; cut in two where its outline pinches, the two parts pack
+//! side by side. The cut is the shortest interior path between two boundary vertices that
+//! are near in the layout but far apart along the outline; the parts keep their layout,
+//! so every seam, the new one too, keeps its lengths exactly, and the distortion is that
+//! of the chart. A cut is kept only when the packing's common scale grows by at least
+//! [`NECK_GAIN`].
+
+use num_complex::Complex64;
+
+use crate::build::ComponentChart;
+use crate::chart::split::{shortest_path, sides, sub_piece, PathGraph};
+use crate::chart::Piece;
+use crate::error::AtlasError;
+use crate::hull::min_square_rect;
+use crate::pack::{fits_at, pack_outlined, pack_with, PackOptions, Packing};
+
+/// Least relative growth of the packing efficiency for a neck cut to be kept: 3 % (a
+/// seam is a cost to whoever paints the texture; a cut that buys less is not worth it).
+pub const NECK_GAIN: f64 = 0.03;
+
+/// Charts tried: those holding at least this share of the layout area of all charts: 0.3
+/// (a smaller chart does not bound the scale alone).
+pub const NECK_MIN_SHARE: f64 = 0.3;
+
+/// Charts tried: those whose smallest square spans at least this share of the texture's
+/// side in the packing: 0.75 (a chart that sets the common scale by its own size; one
+/// that spans less leaves room the others can take).
+pub const NECK_MIN_SPAN: f64 = 0.75;
+
+/// Neck candidates tried per chart: 4 (the narrowest, each at least
+/// [`NECK_MIN_ARC`] of the outline away from the others along it).
+pub const NECK_CANDIDATES: usize = 4;
+
+/// Both parts of the outline a neck cuts off hold at least this share of it: 0.15 (a
+/// narrower lobe is a spike, which the profile packer nests already).
+pub const NECK_MIN_ARC: f64 = 0.15;
+
+/// Outline points a neck search looks at, at most: 400 (every k-th boundary vertex beyond
+/// that; pairs are quadratic in it).
+const NECK_SAMPLES: usize = 400;
+
+/// Rounds of cuts: 2 (a part can be cut again once).
+const NECK_ROUNDS: usize = 2;
+
+/// A closed polyline of layout points.
+type Outline = Vec<[f64; 2]>;
+
+/// Every piece's layout points and boundary loops, for the packer.
+pub(crate) fn outlines(charts: &[ComponentChart]) -> (Vec<Outline>, Vec<Vec<Outline>>) {
+    let pieces: Vec<&Piece> = charts.iter().flat_map(|c| &c.pieces).collect();
+    // the hull of a piece is that of its outline: its loops' points are all the packer needs
+    let loops: Vec<Vec<Vec<[f64; 2]>>> = pieces.iter().map(|p| piece_loops(p)).collect();
+    let points = loops.iter().map(|l| l.concat()).collect();
+    (points, loops)
+}
+
+/// The points of a piece's outline.
+fn points_of(p: &Piece) -> Vec<[f64; 2]> {
+    piece_loops(p).concat()
+}
+
+fn piece_loops(p: &Piece) -> Vec<Vec<[f64; 2]>> {
+    p.mesh
+        .boundary_loops()
+        .iter()
+        .map(|l| {
+            l.iter()
+                .map(|&v| [p.uv[v as usize].re, p.uv[v as usize].im])
+                .collect()
+        })
+        .collect()
+}
+
+/// Cuts the charts of `charts` at necks while that grows the packing's efficiency by
+/// [`NECK_GAIN`] (see the module); returns the packing of the pieces then.
+///
+/// # Errors
+/// Those of [`pack_outlined`]; [`AtlasError::Mesh`] should a part fail validation (parts
+/// of a valid disk are valid).
+pub(crate) fn cut_necks(
+    charts: &mut [ComponentChart],
+    pack: &PackOptions,
+) -> Result<Packing, AtlasError> {
+    // the charts as they are packed at one texel (the atlas's packing if no cut pays);
+    // cuts judged on the profile packer's coarse grid (a scale at most 2 % lower: a cut
+    // must pay that too), the pieces packed at one texel again after a cut
+    let (points, loops) = outlines(charts);
+    let mut packing = pack_outlined(&points, &loops, pack)?;
+    let mut cut = false;
+    for _ in 0..NECK_ROUNDS {
+        let total: f64 = charts.iter().flat_map(|c| &c.pieces).map(piece_area).sum();
+        // (component, piece) of the charts large enough to bound the scale alone
+        let large: Vec<(usize, usize)> = charts
+            .iter()
+            .enumerate()
+            .flat_map(|(c, ch)| (0..ch.pieces.len()).map(move |k| (c, k)))
+            .filter(|&(c, k)| piece_area(&charts[c].pieces[k]) >= NECK_MIN_SHARE * total)
+            .filter(|&(c, k)| {
+                let r = min_square_rect(&points_of(&charts[c].pieces[k]));
+                r.size[0].max(r.size[1]) * packing.scale >= NECK_MIN_SPAN
+            })
+            .collect();
+        let mut improved = false;
+        for (c, k) in large {
+            let piece = &charts[c].pieces[k];
+            let lp = match piece.mesh.boundary_loops() {
+                [lp] => lp.clone(),
+                _ => continue,
+            };
+            let at = |v: u32| [piece.uv[v as usize].re, piece.uv[v as usize].im];
+            let mut on_loop = vec![false; piece.mesh.num_vertices()];
+            lp.iter().for_each(|&v| on_loop[v as usize] = true);
+            // each candidate judged by its parts' outlines (the loop's two arcs closed by
+            // the path), the parts built for the best one only
+            let mut best: Option<(Packing, Vec<usize>)> = None;
+            let pairs = candidates(piece, &lp);
+            let graph = PathGraph::new(&piece.mesh);
+            for (i, j) in pairs {
+                let Some(path) = shortest_path(&piece.mesh, &graph, lp[i], lp[j]) else {
+                    continue;
+                };
+                let inner: Vec<u32> = path[..path.len() - 1]
+                    .iter()
+                    .map(|&h| piece.mesh.halfedge_vertices(h).1)
+                    .collect();
+                if inner.iter().any(|&v| on_loop[v as usize]) {
+                    continue;
+                }
+                let m = lp.len();
+                let first: Vec<[f64; 2]> = (i..=j)
+                    .map(|x| at(lp[x]))
+                    .chain(inner.iter().rev().map(|&v| at(v)))
+                    .collect();
+                let second: Vec<[f64; 2]> = (j..=i + m)
+                    .map(|x| at(lp[x % m]))
+                    .chain(inner.iter().map(|&v| at(v)))
+                    .collect();
+                let (mut pts, mut lps) = outlines(charts);
+                let slot = index_of(charts, c, k);
+                pts.splice(slot..=slot, [first.clone(), second.clone()]);
+                lps.splice(slot..=slot, [vec![first], vec![second]]);
+                let bar = best
+                    .as_ref()
+                    .map_or(packing.scale * (1.0 + NECK_GAIN).sqrt(), |b| b.0.scale);
+                // one packing at the bar first: most cuts do not reach it
+                if !fits_at(&lps, bar, pack) {
+                    continue;
+                }
+                let Ok(trial) = pack_with(&pts, &lps, pack, false) else {
+                    continue;
+                };
+                if trial.scale > bar {
+                    best = Some((trial, path));
+                }
+            }
+            let Some((trial, path)) = best else {
+                continue;
+            };
+            let Some(groups) = sides(&piece.mesh, &path).filter(|g| g.len() == 2) else {
+                continue;
+            };
+            let parts = groups
+                .iter()
+                .map(|g| sub_piece(piece, g))
+                .collect::<Result<Vec<_>, _>>()?;
+            charts[c].pieces.splice(k..=k, parts);
+            packing = trial;
+            improved = true;
+            cut = true;
+            // the indices of this component's later pieces moved: next round
+            break;
+        }
+        if !improved {
+            break;
+        }
+    }
+    if cut {
+        let (points, loops) = outlines(charts);
+        packing = pack_outlined(&points, &loops, pack)?;
+    }
+    Ok(packing)
+}
+
+/// Position of piece `k` of component `c` in the flat list of pieces.
+fn index_of(charts: &[ComponentChart], c: usize, k: usize) -> usize {
+    charts[..c].iter().map(|ch| ch.pieces.len()).sum::<usize>() + k
+}
+
+fn piece_area(p: &Piece) -> f64 {
+    p.mesh
+        .faces()
+        .iter()
+        .map(|t| {
+            let z = t.map(|v| p.uv[v as usize]);
+            let (e1, e2) = (z[1] - z[0], z[2] - z[0]);
+            0.5 * (e1.re * e2.im - e1.im * e2.re)
+        })
+        .sum()
+}
+
+/// Pairs of positions `i < j` on the boundary loop `lp` of a disk piece where its outline pinches: near in the
+/// layout, both arcs between them at least [`NECK_MIN_ARC`] of the outline, the segment
+/// between them inside the chart; narrowest (layout distance over the shorter arc) first,
+/// at most [`NECK_CANDIDATES`], each pair apart from the ones before along the outline.
+fn candidates(piece: &Piece, lp: &[u32]) -> Vec<(usize, usize)> {
+    let z: Vec<Complex64> = lp.iter().map(|&v| piece.uv[v as usize]).collect();
+    let m = z.len();
+    let mut arc = vec![0.0; m + 1];
+    for i in 0..m {
+        arc[i + 1] = arc[i] + (z[(i + 1) % m] - z[i]).norm();
+    }
+    let perimeter = arc[m];
+    if !(perimeter > 0.0) {
+        return Vec::new();
+    }
+    let stride = m.div_ceil(NECK_SAMPLES).max(1);
+    let samples: Vec<usize> = (0..m).step_by(stride).collect();
+    let mut pairs = Vec::new();
+    for (x, &i) in samples.iter().enumerate() {
+        for &j in &samples[x + 1..] {
+            let along = arc[j] - arc[i];
+            let short = along.min(perimeter - along);
+            if short < NECK_MIN_ARC * perimeter {
+                continue;
+            }
+            pairs.push(((z[j] - z[i]).norm() / short, i, j));
+        }
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let apart = |a: usize, b: usize| {
+        let d = (arc[a] - arc[b]).abs();
+        d.min(perimeter - d) >= 0.5 * NECK_MIN_ARC * perimeter
+    };
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    for (_, i, j) in pairs {
+        if out.len() == NECK_CANDIDATES {
+            break;
+        }
+        if !out
+            .iter()
+            .all(|&(p, q)| (apart(i, p) || apart(j, q)) && (apart(i, q) || apart(j, p)))
+        {
+            continue;
+        }
+        if inside(&z, 0.5 * (z[i] + z[j])) {
+            out.push((i, j));
+        }
+    }
+    out
+}
+
+/// Whether `p` lies inside the closed polygon `z` (winding number, non-zero).
+fn inside(z: &[Complex64], p: Complex64) -> bool {
+    let m = z.len();
+    let mut winding = 0i32;
+    for i in 0..m {
+        let (a, b) = (z[i], z[(i + 1) % m]);
+        let cross = (b.re - a.re) * (p.im - a.im) - (p.re - a.re) * (b.im - a.im);
+        if a.im <= p.im {
+            if b.im > p.im && cross > 0.0 {
+                winding += 1;
+            }
+        } else if b.im <= p.im && cross < 0.0 {
+            winding -= 1;
+        }
+    }
+    winding != 0
+}

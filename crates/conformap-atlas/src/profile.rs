@@ -1,0 +1,216 @@
+//! A profile packer: each chart (turned a quarter at a time) described per texel column by
+//! the lowest and highest point of its outline there, dropped from above onto the packed
+//! charts' upper profile at the column where it comes to rest lowest. Unlike a rectangle,
+//! a chart's real outline nests into the dents of the charts below it: the spikes and
+//! bays of a cut surface's layout interlock instead of each claiming its bounding box.
+
+use crate::hull::rotate;
+
+/// One chart turned one way: its outline loops rotated (layout units, not yet scaled).
+#[derive(Debug, Clone)]
+pub(crate) struct Turned {
+    /// Rotation from the layout, radians counter-clockwise.
+    pub angle: f64,
+    /// The outline's edges after the rotation, as segments.
+    segments: Vec<[[f64; 2]; 2]>,
+    /// Lowest x after the rotation.
+    min_x: f64,
+    /// Width after the rotation.
+    width: f64,
+}
+
+impl Turned {
+    /// `loops` (closed polylines of layout points) turned by `angle`.
+    pub fn new(loops: &[Vec<[f64; 2]>], angle: f64) -> Self {
+        let mut segments = Vec::new();
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for lp in loops {
+            let pts: Vec<[f64; 2]> = lp.iter().map(|&p| rotate(p, angle)).collect();
+            for (k, &a) in pts.iter().enumerate() {
+                let b = pts[(k + 1) % pts.len()];
+                segments.push([a, b]);
+                lo = lo.min(a[0]);
+                hi = hi.max(a[0]);
+            }
+        }
+        if !lo.is_finite() {
+            (lo, hi) = (0.0, 0.0);
+        }
+        Self {
+            angle,
+            segments,
+            min_x: lo,
+            width: hi - lo,
+        }
+    }
+}
+
+/// A chart's profile at one scale: per column of its (margin-dilated) footprint, the
+/// lowest and highest y, in texels relative to the rotated chart's own origin.
+struct Profile {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    /// Texels from the footprint's left column to the rotated chart's x = min_x.
+    left: f64,
+}
+
+impl Profile {
+    /// The profile of `t` at `scale` texels per layout unit with `half` texels of margin
+    /// on every side (the footprint is the chart grown by a square of that half-side, which
+    /// holds the disk of that radius).
+    fn new(t: &Turned, scale: f64, half: f64) -> Self {
+        let w = t.width * scale;
+        let columns = (w + 2.0 * half).ceil().max(1.0) as usize;
+        // the chart's own extremes per unit column of x − min_x + half
+        let mut lo = vec![f64::INFINITY; columns];
+        let mut hi = vec![f64::NEG_INFINITY; columns];
+        let x_of = |p: [f64; 2]| (p[0] - t.min_x) * scale + half;
+        for &[a, b] in &t.segments {
+            let (xa, ya, xb, yb) = (x_of(a), a[1] * scale, x_of(b), b[1] * scale);
+            let (x0, y0, x1, y1) = if xa <= xb {
+                (xa, ya, xb, yb)
+            } else {
+                (xb, yb, xa, ya)
+            };
+            // a segment's extremes over a column are at its ends there: its own ends and
+            // its crossings of the column's sides
+            let col = |x: f64| (x.floor().max(0.0) as usize).min(columns - 1);
+            let mut put = |k: usize, y: f64| {
+                lo[k] = lo[k].min(y);
+                hi[k] = hi[k].max(y);
+            };
+            put(col(x0), y0);
+            put(col(x1), y1);
+            if x1 > x0 {
+                let slope = (y1 - y0) / (x1 - x0);
+                for side in (x0.floor() as i64 + 1)..=(x1.floor() as i64) {
+                    let y = y0 + slope * (side as f64 - x0);
+                    let k = side.clamp(1, columns as i64 - 1) as usize;
+                    put(k - 1, y);
+                    put(k, y);
+                }
+            }
+        }
+        // grown by the margin: column c holds every chart point within `half` of it
+        let reach = half.ceil() as usize;
+        let mut glo = vec![f64::INFINITY; columns];
+        let mut ghi = vec![f64::NEG_INFINITY; columns];
+        for c in 0..columns {
+            let from = c.saturating_sub(reach);
+            let to = (c + reach).min(columns - 1);
+            for k in from..=to {
+                glo[c] = glo[c].min(lo[k]);
+                ghi[c] = ghi[c].max(hi[k]);
+            }
+            glo[c] -= half;
+            ghi[c] += half;
+        }
+        Self {
+            lo: glo,
+            hi: ghi,
+            left: half,
+        }
+    }
+}
+
+/// Where a chart went: texture texel = `scale · rotate(p, angle) + offset`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Place {
+    /// The orientation chosen (index into the chart's `Turned` list).
+    pub turn: usize,
+    /// Offset in texels.
+    pub offset: [f64; 2],
+}
+
+/// Packs `charts` (each given in its candidate orientations) in `order` into a square of
+/// `n` texels at `scale` texels per layout unit with `margin` texels between charts (half
+/// of it at the square's edges): each chart at the column and orientation where its top
+/// ends lowest (ties: the first orientation, then leftmost). Columns are `cell` texels
+/// wide (1: exact to a texel; coarser is conservative, every chart's extremes taken over
+/// the whole column, and `cell²` times faster). `None` when a chart does not fit below the
+/// square's top; else the places and the height used, in texels. With `fixed`, chart `k`
+/// is tried in orientation `fixed[k]` only.
+pub(crate) fn pack(
+    charts: &[Vec<Turned>],
+    order: &[usize],
+    scale: f64,
+    n: usize,
+    margin: f64,
+    cell: f64,
+    fixed: Option<&[usize]>,
+) -> Option<(Vec<Place>, f64)> {
+    // in units of columns
+    let half = 0.5 * margin / cell;
+    let scale = scale / cell;
+    let top = n as f64 / cell;
+    let n = (n as f64 / cell).floor() as usize;
+    let mut sky = vec![0.0f64; n];
+    let mut out = vec![
+        Place {
+            turn: 0,
+            offset: [0.0; 2]
+        };
+        charts.len()
+    ];
+    for &k in order {
+        // (top, rest height of the chart's origin, column, orientation, profile)
+        let mut best: Option<(f64, f64, usize, usize, Profile)> = None;
+        for (turn, t) in charts[k].iter().enumerate() {
+            if fixed.is_some_and(|f| f[k] != turn) {
+                continue;
+            }
+            let p = Profile::new(t, scale, half);
+            let w = p.lo.len();
+            if w > n {
+                continue;
+            }
+            let max_hi = p.hi.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let min_lo = p.lo.iter().copied().fold(f64::INFINITY, f64::min);
+            // the chart's top must end below the square's and below the best so far
+            let mut bound = best.as_ref().map_or(top, |b| b.0);
+            let mut found: Option<(f64, usize)> = None;
+            // the column where the chart reaches lowest touches the others first: looked
+            // at first, it lets the bound cut a column's scan short sooner
+            let low =
+                p.lo.iter()
+                    .enumerate()
+                    .fold(0, |b, (c, &l)| if l < p.lo[b] { c } else { b });
+            for x in 0..=n - w {
+                let mut y = (sky[x + low] - p.lo[low]).max(-min_lo);
+                if y + max_hi >= bound {
+                    continue;
+                }
+                for c in 0..w {
+                    y = y.max(sky[x + c] - p.lo[c]);
+                    if y + max_hi >= bound {
+                        break;
+                    }
+                }
+                if y + max_hi < bound {
+                    bound = y + max_hi;
+                    found = Some((y, x));
+                }
+            }
+            if let Some((y, x)) = found {
+                best = Some((y + max_hi, y, x, turn, p));
+            }
+        }
+        let (_, y, x, turn, p) = best?;
+        for c in 0..p.lo.len() {
+            let t = y + p.hi[c];
+            if t.is_finite() {
+                sky[x + c] = sky[x + c].max(t);
+            }
+        }
+        let t = &charts[k][turn];
+        out[k] = Place {
+            turn,
+            offset: [x as f64 + p.left - t.min_x * scale, y],
+        };
+    }
+    let height = sky.iter().copied().fold(0.0, f64::max);
+    for p in &mut out {
+        p.offset = [p.offset[0] * cell, p.offset[1] * cell];
+    }
+    Some((out, height * cell))
+}
