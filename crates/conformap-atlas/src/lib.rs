@@ -47,13 +47,23 @@ pub mod chart;
 pub mod cones;
 mod error;
 pub mod hull;
+mod layout;
+pub mod nonmanifold;
 mod pack;
 mod skyline;
 mod summary;
 
-pub use build::{build_atlas, split_components, Atlas, AtlasOptions, AtlasReport, ComponentChart};
-pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
+pub use build::{
+    build_atlas, build_atlas_with_cones, split_components, Atlas, AtlasOptions, AtlasReport,
+    AutoConesReport, ComponentChart, ConeEntry,
+};
+pub use chart::{
+    chart_auto, chart_closed, chart_component, chart_given, chart_quality, AutoCones, Chart,
+    ChartQuality, MAX_AUTO_CONES,
+};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
+pub use layout::{keep_in_rows, ChartScale, Layout};
+pub use nonmanifold::{split_non_manifold, NonManifoldSplit, SplitReport};
 pub use pack::{pack_charts, ChartPlacement, PackOptions, Packing};
 pub use summary::atlas_peak_bytes;
