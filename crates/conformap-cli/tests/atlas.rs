@@ -410,3 +410,146 @@ fn pack_none_keeps_the_layout_and_per_chart_evens_the_charts() {
         .iter()
         .all(|p| (0.0..=1.0).contains(&p[0]) && (0.0..=1.0).contains(&p[1])));
 }
+
+/// Two subdivided cubes (4 × 4 squares a side) touching at one corner, and a book of three
+/// 4 × 4 pages on one spine, the middle page turned the other way: an OBJ of 480 faces,
+/// one non-manifold vertex where the cubes meet, a non-manifold spine of 4 edges.
+fn cubes_and_book() -> (String, usize) {
+    let n = 4i64;
+    let mut index: std::collections::HashMap<[i64; 3], usize> = Default::default();
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut faces: Vec<[usize; 3]> = Vec::new();
+    let mut vertex = |p: [i64; 3], scale: f64, real: Option<[f64; 3]>| -> usize {
+        *index.entry(p).or_insert_with(|| {
+            points.push(real.unwrap_or([
+                p[0] as f64 * scale,
+                p[1] as f64 * scale,
+                p[2] as f64 * scale,
+            ]));
+            points.len() - 1
+        })
+    };
+    // a cube [o, o + n]³: every face a grid, counter-clockwise seen from outside
+    for o in [0, n] {
+        for axis in 0..3 {
+            for side in [0, n] {
+                let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                for i in 0..n {
+                    for j in 0..n {
+                        let at = |a: i64, b: i64| {
+                            let mut p = [o; 3];
+                            p[axis] += side;
+                            p[u] += a;
+                            p[v] += b;
+                            p
+                        };
+                        let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                        let q = q.map(|p| vertex(p, 0.25, None));
+                        let t = if side == n {
+                            [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+                        } else {
+                            [[q[0], q[2], q[1]], [q[0], q[3], q[2]]]
+                        };
+                        faces.extend(t);
+                    }
+                }
+            }
+        }
+    }
+    // the book, away from the cubes: spine along z at x = 5, pages at 0°, 120°, 240°
+    for page in 0..3i64 {
+        let angle = 2.0 * std::f64::consts::PI * page as f64 / 3.0;
+        for i in 0..n {
+            for j in 0..n {
+                let at = |a: i64, b: i64| {
+                    let key = if a == 0 {
+                        [100, 0, b]
+                    } else {
+                        [100 + page, a, b]
+                    };
+                    let r = a as f64 * 0.25;
+                    let real = [5.0 + r * angle.cos(), r * angle.sin(), b as f64 * 0.25];
+                    (key, real)
+                };
+                let q = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                let q = q.map(|(k, r)| vertex(k, 1.0, Some(r)));
+                if page == 1 {
+                    faces.extend([[q[0], q[2], q[1]], [q[0], q[3], q[2]]]);
+                } else {
+                    faces.extend([[q[0], q[1], q[2]], [q[0], q[2], q[3]]]);
+                }
+            }
+        }
+    }
+    let mut text = String::new();
+    for p in &points {
+        text.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
+    }
+    for t in &faces {
+        text.push_str(&format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
+    }
+    (text, faces.len())
+}
+
+#[test]
+fn non_manifold_vertices_and_edges_are_split_by_atlas_only() {
+    let d = tmpdir("atlas-non-manifold");
+    let (text, faces) = cubes_and_book();
+    assert_eq!(faces, 2 * 6 * 32 + 3 * 32);
+    let input = d.join("cubes_book.obj");
+    std::fs::write(&input, text).expect("write");
+    // other commands keep refusing, now naming atlas
+    let out = d.join("disk.obj");
+    let o = conformap(&["disk", s(&input), "-o", s(&out)]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("non-manifold") && e.contains("conformap atlas"),
+        "{e}"
+    );
+    assert!(!out.exists());
+
+    let (out, rep, map) = (d.join("atlas.obj"), d.join("r.json"), d.join("map.txt"));
+    conformap_ok(&[
+        "atlas",
+        s(&input),
+        "-o",
+        s(&out),
+        "--report",
+        s(&rep),
+        "--vertex-map",
+        s(&map),
+    ]);
+    let r = json(&rep);
+    let a = &r["atlas"];
+    // the cubes' corner once; the spine's 5 vertices (the third page's copies)
+    assert_eq!(a["non_manifold"]["vertices_split"], 6, "{a}");
+    assert_eq!(a["non_manifold"]["vertices_added"], 6, "{a}");
+    assert_eq!(a["non_manifold"]["edges_split"], 4, "{a}");
+    // two cubes, the two glued pages, the page cut off
+    assert_eq!(a["components"], 4, "{a}");
+    check_atlas(&r, &out, faces);
+    // the vertex map: one line per written vertex, the copies naming their input vertex
+    let text = std::fs::read_to_string(&out).expect("out");
+    let written = text.lines().filter(|l| l.starts_with("v ")).count();
+    let lines: Vec<usize> = std::fs::read_to_string(&map)
+        .expect("map")
+        .lines()
+        .map(|l| l.parse().expect("index"))
+        .collect();
+    assert_eq!(lines.len(), written);
+    let split: Vec<usize> = a["non_manifold"]["split_vertices"]
+        .as_array()
+        .expect("list")
+        .iter()
+        .map(|v| v.as_u64().expect("int") as usize)
+        .collect();
+    let kept = lines.len() - 6;
+    assert!(
+        lines[..kept].iter().enumerate().all(|(i, &v)| i == v),
+        "input vertices first"
+    );
+    let mut copies = lines[lines.len() - 6..].to_vec();
+    copies.sort_unstable();
+    assert_eq!(copies, split);
+}

@@ -112,13 +112,18 @@ impl AtlasJob {
     }
 
     /// The given cones, read and checked against `mesh`; `None` when they are placed.
-    fn given_cones(&self, mesh: &TriMesh) -> Result<Option<Vec<(u32, f64)>>, Failure> {
+    fn given_cones(&self, input: &Input) -> Result<Option<Vec<(u32, f64)>>, Failure> {
         let given = match &self.cone_choice {
             ConeChoice::File(path) => parse_cone_file(path)?,
             ConeChoice::List(list) => list.clone(),
             _ => return Ok(None),
         };
-        given.check(mesh).map(Some)
+        let n = input.mesh.num_vertices();
+        let copies = match &input.split {
+            Some(s) => &s.vertex_to_input[n - s.report.vertices_added..],
+            None => &[][..],
+        };
+        given.check(&input.mesh, copies).map(Some)
     }
 }
 
@@ -167,13 +172,17 @@ impl MapJob for AtlasJob {
         Ok(())
     }
 
+    fn splits_non_manifold(&self) -> bool {
+        true
+    }
+
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
         atlas_peak_bytes(mesh)
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
-        let given = self.given_cones(mesh)?;
+        let given = self.given_cones(input)?;
         let t = std::time::Instant::now();
         let atlas = build_atlas_with_cones(
             mesh.positions(),
@@ -191,6 +200,8 @@ impl MapJob for AtlasJob {
             .collect();
         let metrics = corner_map_metrics(mesh, &corner, &MetricsOptions::DEFAULT)?;
         let metrics_ms = t.elapsed().as_secs_f64() * 1e3;
+        let mut atlas = atlas;
+        atlas.report.non_manifold = input.split.as_ref().map(|s| s.report.clone());
         let r = &atlas.report;
         let solver = SolverSection::new(r.summary(), SolverDetail::None);
         let clean = solver.summary.converged;
@@ -222,6 +233,13 @@ impl MapJob for AtlasJob {
                     auto.capped, auto.cap
                 ));
             }
+        }
+        if let Some(s) = &r.non_manifold {
+            summary.push_str(&format!(
+                "; non-manifold input split: {} vertex(es) (first: {:?}) into {} more, {} edge(s) \
+                 of 3+ faces cut",
+                s.vertices_split, s.split_vertices, s.vertices_added, s.edges_split
+            ));
         }
         if self.pack_none {
             summary.push_str("; packing off (charts in their own coordinates)");

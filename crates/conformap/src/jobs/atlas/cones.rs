@@ -70,11 +70,15 @@ impl GivenCones {
     /// [`GAUSS_BONNET_TOLERANCE_DEG`] per cone). Components of genus ≥ 1 and with
     /// boundary have no sum to meet: their handle cuts and boundary take up the rest.
     ///
+    /// On a mesh split at its non-manifold vertices, `copies` is the input vertex of each
+    /// vertex added (after the input's): a cone cannot sit on a vertex that was split.
+    ///
     /// # Errors
     /// [`Failure::BadInput`] naming the first bad cone (its line or entry, the value), or
     /// the component whose cones break Gauss–Bonnet (their sum and the one needed).
-    pub fn check(&self, mesh: &TriMesh) -> Result<Vec<(u32, f64)>, Failure> {
+    pub fn check(&self, mesh: &TriMesh, copies: &[u32]) -> Result<Vec<(u32, f64)>, Failure> {
         let n = mesh.num_vertices();
+        let n_input = n - copies.len();
         let mut on_boundary = vec![false; n];
         for &v in mesh.boundary_loops().iter().flatten() {
             on_boundary[v as usize] = true;
@@ -87,13 +91,13 @@ impl GivenCones {
         let mut first: HashMap<u64, &str> = HashMap::new();
         for c in &self.cones {
             let place = c.place.as_str();
-            if c.vertex >= n as u64 {
+            if c.vertex >= n_input as u64 {
                 return Err(self.refuse(
                     place,
                     format!(
-                        "vertex {} is out of range: the mesh has {n} vertices (0 to {})",
+                        "vertex {} is out of range: the mesh has {n_input} vertices (0 to {})",
                         c.vertex,
-                        n.saturating_sub(1)
+                        n_input.saturating_sub(1)
                     ),
                     "vertices are 0-based, in the order of the mesh's `v` lines (the `vertex` \
                      of each entry of the report's atlas.cone_list)",
@@ -110,6 +114,17 @@ impl GivenCones {
                     "give the total angle around the vertex in the flattened layout, in degrees: \
                      below 360 for a tip (90 for a cube corner), above 360 for a saddle; past \
                      720° the layout wraps round the cone more than twice and overlaps itself",
+                ));
+            }
+            if copies.contains(&(c.vertex as u32)) {
+                return Err(self.refuse(
+                    place,
+                    format!(
+                        "vertex {} is non-manifold: the atlas splits it into one vertex per \
+                         fan of faces",
+                        c.vertex
+                    ),
+                    "a cone must sit on a manifold vertex; choose a vertex next to it",
                 ));
             }
             if !used[c.vertex as usize] {
