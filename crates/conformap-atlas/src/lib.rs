@@ -19,6 +19,10 @@
 //!   factorization) and their automatic placement with the least area spread
 //!   ([`place_cones`]).
 //! - [`hull`]: convex hull and the minimum-area bounding rectangle (rotating calipers).
+//! - The options beyond placement: cones as given ([`chart_given`],
+//!   [`build_atlas_with_cones`]) or as many as reach an area spread ([`chart_auto`]),
+//!   charts kept unpacked ([`Layout`]) or scaled per component ([`ChartScale`]), and
+//!   non-manifold input split into a manifold one ([`split_non_manifold`]).
 //! - [`AtlasError`]: what cannot be packed.
 //!
 //! # Example
