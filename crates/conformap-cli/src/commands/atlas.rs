@@ -12,7 +12,9 @@ use crate::args::{InputArgs, OutputArgs};
     after_help = "Texture coordinates (-o): one `vt` per face corner (`f v/vt`, the `v` lines in the input's order), every chart packed into the unit square with one texel density (`--pack none`: the charts in their own coordinates; `--scale per-chart`: one density per chart); `--flat`: the atlas as a flat mesh.\n\nCone file (`--cones FILE`): one `<vertex> <cone angle in degrees>` per line, 0-based vertices in the order of the `v` lines, `#` comments; interior vertices only, angles in (0, 720]; on a closed genus-0 component the curvatures 360 − angle must add up to 720 (Gauss–Bonnet). The report's atlas.cone_list holds a run's cones in that form."
 )]
 pub struct AtlasArgs {
-    /// The mesh: any number of components, each a valid manifold surface of any topology.
+    /// The mesh: any number of components, each a valid surface of any topology; a
+    /// non-manifold vertex or edge is split there (the report's `non_manifold` says where,
+    /// `--vertex-map` writes each output vertex's input vertex).
     #[command(flatten)]
     pub input: InputArgs,
     /// The outputs: `-o` holds one texture coordinate per face corner (`f v/vt`, the `v`
@@ -30,11 +32,11 @@ pub struct AtlasArgs {
     #[arg(long, value_name = "S", default_value_t = DEFAULT_MAX_AREA_SPREAD)]
     pub max_area_spread: f64,
     /// `square`: charts turned and packed into the unit square; `none`: charts kept in
-    /// their own coordinates (about 3D units), side by side, `vt` outside [0,1]².
+    /// their own coordinates (about 3D units), side by side, `vt` outside `[0,1]²`.
     #[arg(long, value_enum, default_value = "square")]
     pub pack: Pack,
-    /// `uniform`: one texel density for the whole atlas; `per-chart`: every chart scaled to
-    /// the same texture area (a density of its own).
+    /// `uniform`: one texel density for the whole atlas; `per-chart`: every component's
+    /// charts scaled together to the same texture area (a density per component).
     #[arg(long, value_enum, default_value = "uniform")]
     pub scale: Scale,
     /// Texels a side of the texture the margin is measured in.

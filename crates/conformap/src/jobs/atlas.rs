@@ -19,7 +19,7 @@ use crate::report::{MetricsSection, SolverDetail, SolverSection, StageTimings};
 
 mod cones;
 
-pub use cones::{parse_cone_file, GivenCone, GivenCones};
+pub use cones::{parse_cone_file, GivenCone, GivenCones, GAUSS_BONNET_TOLERANCE_DEG};
 
 /// The area spread `--cones auto` aims at unless `--max-area-spread` says otherwise: 1.0,
 /// the spread boundary first flattening reaches on spot with its default 8 cones (1.01):
@@ -45,7 +45,8 @@ pub enum ConeChoice {
 #[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct AtlasJob {
-    /// The mesh: any number of components, each a valid manifold surface of any topology.
+    /// The mesh: any number of components, each a valid surface of any topology; a
+    /// non-manifold vertex or edge is split there ([`crate::pipeline::read_input_splitting`]).
     pub input: InputOptions,
     /// The outputs: `-o` holds one texture coordinate per face corner (`f v/vt`, the `v`
     /// lines in the input's order), every coordinate in `[0,1]²`; `--flat` the atlas as a
