@@ -10,10 +10,13 @@ use crate::keywords;
 use crate::maps::{report_dict, run};
 use crate::options;
 
+// the signature's literal default of `max_area_spread` (a constant would show as `...`)
+const _: () = assert!(conformap::jobs::atlas::DEFAULT_MAX_AREA_SPREAD == 1.0);
+
 /// A texture atlas, as `conformap atlas`. See `conformap.pyi`.
 #[pyfunction]
 #[pyo3(signature = (V, F, cones = None, *, resolution = 1024, margin = 2.0,
-    max_area_spread = conformap::jobs::atlas::DEFAULT_MAX_AREA_SPREAD, pack = "square",
+    max_area_spread = 1.0, pack = "square",
     scale = "uniform", strict = false, max_memory = None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn atlas<'py>(
