@@ -122,10 +122,13 @@ def flatten(
 def atlas(
     V: ArrayLike,
     F: ArrayLike,
-    cones: Optional[int] = None,
+    cones: Union[int, Literal["auto"], ArrayLike, None] = None,
     *,
     resolution: int = 1024,
     margin: float = 2.0,
+    max_area_spread: float = 1.0,
+    pack: Literal["square", "none"] = "square",
+    scale: Literal["uniform", "per-chart"] = "uniform",
     strict: bool = False,
     max_memory: Optional[int] = None,
 ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32], Report]:
@@ -135,6 +138,15 @@ def atlas(
     default, and their handles; genus-0 ones with boundary by the free boundary), charts
     that would overlap are split, and all are packed into the unit square with one texel
     density and ``margin`` texels between them at ``resolution``.
+
+    ``cones``: an integer (cones placed automatically per closed component), ``"auto"``
+    (as many per component as bring its area spread to ``max_area_spread``, at most 32;
+    ``report["atlas"]["auto_cones"]`` says how many and where the cap stopped), or
+    ``(vertex, cone angle in degrees)`` pairs used as given (``--cones FILE``; the same
+    checks: interior vertices, angles in (0, 720], on a closed genus-0 component
+    ``sum(360 - angle) == 720``). ``report["atlas"]["cone_list"]`` holds the cones of a run
+    in that form. ``pack="none"`` keeps the charts in their own coordinates (``uv`` may
+    leave [0, 1]²); ``scale="per-chart"`` gives every chart the same texture area.
 
     Returns ``(uv, F_uv, report)``: ``uv`` (k, 2) texture coordinates in [0, 1]², ``F_uv``
     (m, 3) their indices per face corner (face ``i`` of ``F`` has ``uv[F_uv[i]]``),

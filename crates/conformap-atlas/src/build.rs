@@ -8,12 +8,13 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::chart::{
-    chart_component, chart_quality, detach_folded, flipped_corner_faces, split_overlapping, Chart,
-    ChartQuality, Piece,
+    chart_auto, chart_component, chart_given, chart_quality, detach_folded, flipped_corner_faces,
+    split_overlapping, AutoCones, Chart, ChartQuality, Piece,
 };
-use crate::cones::ConeOptions;
+use crate::cones::{Cone, ConeOptions};
 use crate::error::AtlasError;
-use crate::pack::{PackOptions, Packing};
+use crate::layout::{keep_in_rows, per_chart_factors, ChartScale, Layout};
+use crate::pack::{pack_charts, PackOptions, Packing};
 
 /// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,6 +27,13 @@ pub struct AtlasOptions {
     pub cone_options: ConeOptions,
     /// Packing.
     pub pack: PackOptions,
+    /// `--cones auto`: as many cones per component as bring the area spread of its cone
+    /// metric to at most this ([`chart_auto`]); overrides [`Self::cones`]. Default: `None`.
+    pub max_area_spread: Option<f64>,
+    /// Where the charts go: packed into `[0,1]²` (default) or kept where they are.
+    pub layout: Layout,
+    /// One texel density for the whole atlas (default) or one per chart.
+    pub scale: ChartScale,
 }
 
 impl AtlasOptions {
@@ -34,6 +42,9 @@ impl AtlasOptions {
         cones: None,
         cone_options: ConeOptions::DEFAULT,
         pack: PackOptions::DEFAULT,
+        max_area_spread: None,
+        layout: Layout::Pack,
+        scale: ChartScale::Uniform,
     };
 
     /// With a fixed number of cones on every component.
@@ -95,6 +106,44 @@ pub struct AtlasReport {
     pub packing_efficiency: f64,
     /// Texture units per 3D unit (one texel density for the whole atlas).
     pub scale: f64,
+    /// Every cone: its input vertex and cone angle, component by component, in the order
+    /// placed (a file of these lines is what `--cones FILE` reads).
+    pub cone_list: Vec<ConeEntry>,
+    /// What `--cones auto` chose (`None` without it).
+    pub auto_cones: Option<AutoConesReport>,
+    /// `"unit-square"`: charts packed into `[0,1]²`; `"none"`: kept in their own
+    /// coordinates (texture units = layout units), side by side.
+    pub packing: &'static str,
+    /// `"uniform"`: one texel density; `"per-chart"`: every component's charts scaled to
+    /// the same texture area.
+    pub scale_mode: &'static str,
+    /// Where a non-manifold input was split before charting (`None`: it was manifold; set
+    /// by the caller that split it, [`crate::split_non_manifold`]).
+    pub non_manifold: Option<crate::SplitReport>,
+}
+
+/// A cone of the atlas, for reports.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[non_exhaustive]
+pub struct ConeEntry {
+    /// The input vertex (0-based).
+    pub vertex: u32,
+    /// The cone angle, degrees (360 minus the angle defect).
+    pub angle_deg: f64,
+}
+
+/// What `--cones auto` chose, for reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[non_exhaustive]
+pub struct AutoConesReport {
+    /// The area spread asked for (per component, of its cone metric).
+    pub max_area_spread: f64,
+    /// The most cones tried per component ([`crate::chart::MAX_AUTO_CONES`]).
+    pub cap: usize,
+    /// Cones chosen on each component.
+    pub counts: Vec<usize>,
+    /// Components where the cap stopped the search before the spread was reached.
+    pub capped: Vec<usize>,
 }
 
 /// A texture atlas of a mesh.
@@ -122,12 +171,37 @@ pub fn build_atlas(
     faces: &[[u32; 3]],
     options: &AtlasOptions,
 ) -> Result<Atlas, AtlasError> {
+    build_atlas_with_cones(positions, faces, options, None)
+}
+
+/// [`build_atlas`] with the cones `given` (input vertex, defect `2π − angle`) on every
+/// component instead of placed ones, when `Some` (a component none of them is on gets
+/// none). The caller checks them: distinct interior vertices, and on a closed genus-0
+/// component defects summing to `4π`.
+///
+/// # Errors
+/// As [`build_atlas`].
+pub fn build_atlas_with_cones(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    options: &AtlasOptions,
+    given: Option<&[(u32, f64)]>,
+) -> Result<Atlas, AtlasError> {
     let components = split_components(positions.len(), faces);
     let mut charts = Vec::with_capacity(components.len());
+    let mut autos: Vec<AutoCones> = Vec::new();
     for (index, face_ids) in components.into_iter().enumerate() {
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
-        let chart = chart_component(&mesh, options.cones, &options.cone_options)?;
+        let chart = match (given, options.max_area_spread) {
+            (Some(given), _) => chart_given(&mesh, &local_cones(given, &vertices))?,
+            (None, Some(spread)) => {
+                let (chart, auto) = chart_auto(&mesh, spread, &options.cone_options)?;
+                autos.push(auto);
+                chart
+            }
+            (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
+        };
         let quality = chart_quality(&mesh, &chart.cut, &chart.uv);
         let whole = Piece {
             faces: (0..mesh.num_faces() as u32).collect(),
@@ -148,7 +222,35 @@ pub fn build_atlas(
             pieces,
         });
     }
-    let packing = crate::neck::cut_necks(&mut charts, &options.pack)?;
+    // one texel density, packed: by outlines, charts cut at necks where that packs denser;
+    // otherwise (per-chart scale, or the charts kept in place) the rectangle packer or rows
+    let packing = if options.layout == Layout::Pack && options.scale == ChartScale::Uniform {
+        crate::neck::cut_necks(&mut charts, &options.pack)?
+    } else {
+        let outlines: Vec<Vec<[f64; 2]>> = charts
+            .iter()
+            .flat_map(|c| &c.pieces)
+            .map(|p| p.uv.iter().map(|z| [z.re, z.im]).collect())
+            .collect();
+        // --scale per-chart: every chart brought to the same layout area first
+        let factors = match options.scale {
+            ChartScale::Uniform => vec![1.0; outlines.len()],
+            ChartScale::PerChart => per_chart_factors(&charts),
+        };
+        let outlines: Vec<Vec<[f64; 2]>> = outlines
+            .into_iter()
+            .zip(&factors)
+            .map(|(o, &f)| o.into_iter().map(|p| [f * p[0], f * p[1]]).collect())
+            .collect();
+        let mut packing = match options.layout {
+            Layout::Pack => pack_charts(&outlines, &options.pack)?,
+            Layout::Keep => keep_in_rows(&outlines, &options.pack)?,
+        };
+        for (place, f) in packing.charts.iter_mut().zip(&factors) {
+            place.scale *= f;
+        }
+        packing
+    };
     let mut uv = vec![[0.0; 2]; 3 * faces.len()];
     let mut places = packing.charts.iter();
     for c in &charts {
@@ -164,13 +266,38 @@ pub fn build_atlas(
             }
         }
     }
-    let report = report(positions, faces, &uv, &charts, &packing);
+    let mut report = report(positions, faces, &uv, &charts, &packing, options);
+    if let Some(spread) = options.max_area_spread.filter(|_| given.is_none()) {
+        report.auto_cones = Some(AutoConesReport {
+            max_area_spread: spread,
+            cap: crate::chart::MAX_AUTO_CONES,
+            counts: autos.iter().map(|a| a.count).collect(),
+            capped: (0..autos.len()).filter(|&i| autos[i].capped).collect(),
+        });
+    }
     Ok(Atlas {
         uv,
         charts,
         packing,
         report,
     })
+}
+
+/// The cones of `given` (input vertices) on a component whose vertices are `vertices`
+/// (local → input), in the component's numbering.
+fn local_cones(given: &[(u32, f64)], vertices: &[u32]) -> Vec<Cone> {
+    let local: std::collections::HashMap<u32, u32> = vertices
+        .iter()
+        .enumerate()
+        .map(|(l, &v)| (v, l as u32))
+        .collect();
+    given
+        .iter()
+        .filter_map(|&(v, defect)| {
+            let vertex = *local.get(&v)?;
+            Some(Cone { vertex, defect })
+        })
+        .collect()
 }
 
 /// Faces grouped by connected component (through shared vertices), each group in input
@@ -264,9 +391,15 @@ fn report(
     uv: &[[f64; 2]],
     charts: &[ComponentChart],
     packing: &Packing,
+    options: &AtlasOptions,
 ) -> AtlasReport {
     let tris = (0..faces.len()).map(|f| [uv[3 * f], uv[3 * f + 1], uv[3 * f + 2]]);
-    let overlap = raster_overlap(tris.clone(), OVERLAP_RESOLUTION, RasterFrame::UnitSquare);
+    // charts kept in their own coordinates: the raster over their bounding box
+    let frame = match options.layout {
+        Layout::Pack => RasterFrame::UnitSquare,
+        Layout::Keep => RasterFrame::BoundingBox,
+    };
+    let overlap = raster_overlap(tris.clone(), OVERLAP_RESOLUTION, frame);
     // per face: 3D area and signed texture area (the metrics crate needs one validated
     // mesh; an atlas's input may be several)
     let corner: Vec<Complex64> = uv.iter().map(|p| Complex64::new(p[0], p[1])).collect();
@@ -310,7 +443,44 @@ fn report(
         seam_log_ratio_mean: seams.0,
         seam_log_ratio_max: seams.1,
         overlap,
-        packing_efficiency: s2,
+        packing_efficiency: s2 / bounding_square(uv),
         scale: packing.scale,
+        cone_list: charts
+            .iter()
+            .flat_map(|c| {
+                c.chart.cones.cones.iter().map(|k| ConeEntry {
+                    vertex: c.vertices[k.vertex as usize],
+                    angle_deg: k.angle_deg(),
+                })
+            })
+            .collect(),
+        auto_cones: None,
+        packing: match options.layout {
+            Layout::Pack => "unit-square",
+            Layout::Keep => "none",
+        },
+        scale_mode: match options.scale {
+            ChartScale::Uniform => "uniform",
+            ChartScale::PerChart => "per-chart",
+        },
+        non_manifold: None,
     }
+}
+
+/// The area the packing efficiency is measured against: 1 (the texture square) when every
+/// point lies in `[0,1]²` (a packed atlas), else the square on the longer side of the
+/// layout's bounding box (charts kept in their own coordinates).
+fn bounding_square(uv: &[[f64; 2]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in uv {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if uv.is_empty() || (lo[0] >= 0.0 && lo[1] >= 0.0 && hi[0] <= 1.0 && hi[1] <= 1.0) {
+        return 1.0;
+    }
+    let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    side * side
 }

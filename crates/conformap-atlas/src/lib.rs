@@ -23,6 +23,10 @@
 //!   factorization) and their automatic placement with the least area spread
 //!   ([`place_cones`]).
 //! - [`hull`]: convex hull and the minimum-area bounding rectangle (rotating calipers).
+//! - The options beyond placement: cones as given ([`chart_given`],
+//!   [`build_atlas_with_cones`]) or as many as reach an area spread ([`chart_auto`]),
+//!   charts kept unpacked ([`Layout`]) or scaled per component ([`ChartScale`]), and
+//!   non-manifold input split into a manifold one ([`split_non_manifold`]).
 //! - [`AtlasError`]: what cannot be packed.
 //!
 //! # Example
@@ -51,16 +55,26 @@ pub mod chart;
 pub mod cones;
 mod error;
 pub mod hull;
+mod layout;
 mod neck;
+pub mod nonmanifold;
 mod pack;
 mod profile;
 mod skyline;
 mod summary;
 
-pub use build::{build_atlas, split_components, Atlas, AtlasOptions, AtlasReport, ComponentChart};
-pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
+pub use build::{
+    build_atlas, build_atlas_with_cones, split_components, Atlas, AtlasOptions, AtlasReport,
+    AutoConesReport, ComponentChart, ConeEntry,
+};
+pub use chart::{
+    chart_auto, chart_closed, chart_component, chart_given, chart_quality, AutoCones, Chart,
+    ChartQuality, MAX_AUTO_CONES,
+};
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
+pub use layout::{keep_in_rows, ChartScale, Layout};
+pub use nonmanifold::{split_non_manifold, NonManifoldSplit, SplitReport};
 pub use pack::{
     pack_charts, pack_outlined, ChartPlacement, PackOptions, Packing, PROFILE_CELL, PROFILE_REFINE,
     PROFILE_REFINE_STEPS, PROFILE_STEPS,

@@ -67,7 +67,8 @@ impl Default for PackOptions {
 pub struct ChartPlacement {
     /// Rotation, radians counter-clockwise.
     pub angle: f64,
-    /// Texture units per layout unit (the same for every chart).
+    /// Texture units per layout unit (the same for every chart, unless the atlas scales
+    /// each component on its own: [`crate::ChartScale::PerChart`]).
     pub scale: f64,
     /// Translation after rotation and scaling.
     pub offset: [f64; 2],

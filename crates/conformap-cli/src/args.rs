@@ -31,9 +31,9 @@ pub struct InputArgs {
     /// (vt index k belongs to repaired vertex k); the report lists the repairs.
     #[arg(long)]
     pub repair: bool,
-    /// With --repair: write the vertex map here, one line per output vertex holding its
-    /// 0-based input vertex.
-    #[arg(long, requires = "repair")]
+    /// With --repair (or with `atlas`, which splits non-manifold vertices and edges): write
+    /// the vertex map here, one line per output vertex holding its 0-based input vertex.
+    #[arg(long)]
     pub vertex_map: Option<PathBuf>,
     /// Refuse (exit 1, nothing computed) if the estimated peak memory exceeds SIZE (bytes,
     /// or with K/M/G/T, e.g. 4G). Default: the memory available (Linux MemAvailable, within

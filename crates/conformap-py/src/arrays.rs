@@ -186,6 +186,7 @@ pub fn memory_input(mesh: TriMesh, file_vertex_count: usize) -> Input {
         source,
         repairs: None,
         path,
+        split: None,
     }
 }
 

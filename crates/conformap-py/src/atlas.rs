@@ -10,10 +10,14 @@ use crate::keywords;
 use crate::maps::{report_dict, run};
 use crate::options;
 
+// the signature's literal default of `max_area_spread` (a constant would show as `...`)
+const _: () = assert!(conformap::jobs::atlas::DEFAULT_MAX_AREA_SPREAD == 1.0);
+
 /// A texture atlas, as `conformap atlas`. See `conformap.pyi`.
 #[pyfunction]
-#[pyo3(signature = (V, F, cones = None, *, resolution = 1024, margin = 2.0, strict = false,
-    max_memory = None))]
+#[pyo3(signature = (V, F, cones = None, *, resolution = 1024, margin = 2.0,
+    max_area_spread = 1.0, pack = "square",
+    scale = "uniform", strict = false, max_memory = None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn atlas<'py>(
     py: Python<'py>,
@@ -22,6 +26,9 @@ pub fn atlas<'py>(
     cones: Option<&Bound<'py, PyAny>>,
     resolution: i64,
     margin: f64,
+    max_area_spread: f64,
+    pack: &str,
+    scale: &str,
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(
@@ -29,7 +36,15 @@ pub fn atlas<'py>(
     Bound<'py, PyAny>,
     Bound<'py, PyAny>,
 )> {
-    let job = keywords::atlas_job(cones, resolution, margin, strict)?;
+    let job = keywords::atlas_job(
+        cones,
+        resolution,
+        margin,
+        max_area_spread,
+        pack,
+        scale,
+        strict,
+    )?;
     let max_memory = options::max_memory(max_memory)?;
     let input = mesh_input(V, F)?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;

@@ -6,7 +6,7 @@
 //!
 //! The jobs read and write [`MEMORY_PATH`]; a batch replaces both paths by each input's.
 
-use conformap::jobs::atlas::AtlasJob;
+use conformap::jobs::atlas::{AtlasJob, ConeChoice, GivenCones, DEFAULT_MAX_AREA_SPREAD};
 use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
 use conformap::jobs::flatten::{FlattenJob, Interior};
 use conformap::jobs::global::{Conjugate, FormObjective, GlobalJob};
@@ -51,7 +51,15 @@ pub const FLATTEN: &[&str] = &[
     "boundary", "values", "corners", "aspect", "interior", "strict",
 ];
 /// The keywords of `atlas` that shape its job.
-pub const ATLAS: &[&str] = &["cones", "resolution", "margin", "strict"];
+pub const ATLAS: &[&str] = &[
+    "cones",
+    "resolution",
+    "margin",
+    "max_area_spread",
+    "pack",
+    "scale",
+    "strict",
+];
 
 /// The input and output options of an in-memory job, `strict` as `--strict` sets it.
 fn io(strict: bool) -> (InputOptions, OutputOptions) {
@@ -198,22 +206,88 @@ pub fn flatten_job(
     Ok(job)
 }
 
-/// The `atlas` job of `atlas`'s keywords.
+/// The `atlas` job of `atlas`'s keywords: `cones` an integer (placed), `"auto"` (as many
+/// as reach `max_area_spread`) or `(vertex, angle in degrees)` pairs (given, checked
+/// against the mesh as `--cones FILE`'s lines); `pack` `"square"` or `"none"`; `scale`
+/// `"uniform"` or `"per-chart"`.
 ///
 /// # Errors
-/// `ConformapError` (usage) for a negative `cones` or `resolution`.
+/// `ConformapError` (usage) for a negative `cones` or `resolution`, another string than
+/// `"auto"`, pairs that are not `(integer ≥ 0, float)`, an unknown `pack` or `scale`.
+#[allow(clippy::too_many_arguments)] // one per keyword
 pub fn atlas_job(
     cones: Option<&Bound<'_, PyAny>>,
     resolution: i64,
     margin: f64,
+    max_area_spread: f64,
+    pack: &str,
+    scale: &str,
     strict: bool,
 ) -> PyResult<AtlasJob> {
     let (input, output) = io(strict);
     let mut job = AtlasJob::new(input, output);
-    job.cones = opt_count(cones, "cones")?;
+    match cones {
+        None => {}
+        Some(c) if c.is_instance_of::<PyString>() => {
+            let text: String = c.extract()?;
+            if text != "auto" {
+                return Err(usage(format!(
+                    "cones must be an integer ≥ 0, \"auto\" or (vertex, angle) pairs, got {text:?}"
+                )));
+            }
+            job.cone_choice = ConeChoice::Auto;
+        }
+        Some(c) if c.is_instance_of::<pyo3::types::PyInt>() => {
+            job.cones = opt_count(cones, "cones")?
+        }
+        Some(c) => job.cone_choice = ConeChoice::List(cone_pairs(c)?),
+    }
     job.resolution = nonneg(resolution, "resolution")?;
     job.margin = margin;
+    job.max_area_spread = max_area_spread;
+    job.pack_none = match pack {
+        "square" => false,
+        "none" => true,
+        other => {
+            return Err(usage(format!(
+                "pack must be \"square\" or \"none\", got {other:?}"
+            )))
+        }
+    };
+    job.per_chart_scale = match scale {
+        "uniform" => false,
+        "per-chart" => true,
+        other => {
+            return Err(usage(format!(
+                "scale must be \"uniform\" or \"per-chart\", got {other:?}"
+            )))
+        }
+    };
     Ok(job)
+}
+
+/// `(vertex, angle in degrees)` pairs of any sequence (a list of tuples, an (k, 2) array).
+fn cone_pairs(obj: &Bound<'_, PyAny>) -> PyResult<GivenCones> {
+    let bad = || {
+        usage(
+            "cones must be an integer ≥ 0, \"auto\" or a sequence of (vertex, angle in degrees) \
+             pairs, e.g. [(12, 270.0), (40, 270.0)]",
+        )
+    };
+    let mut pairs = Vec::new();
+    for item in obj.try_iter().map_err(|_| bad())? {
+        let item = item?;
+        let pair: Vec<f64> = item.extract().map_err(|_| bad())?;
+        let [v, a] = pair[..] else { return Err(bad()) };
+        if !(v >= 0.0 && v.fract() == 0.0 && v < u32::MAX as f64) {
+            return Err(usage(format!(
+                "cones[{}]: vertex {v} is not a vertex index (a whole number ≥ 0)",
+                pairs.len()
+            )));
+        }
+        pairs.push((v as u64, a));
+    }
+    Ok(GivenCones::from_pairs(&pairs))
 }
 
 /// The keywords a batch of `command` accepts (its map function's, but `max_memory`,
@@ -360,6 +434,9 @@ pub fn template(
             kw.get("cones")?.as_ref(),
             kw.value("resolution", "an integer ≥ 0", 1024)?,
             kw.value("margin", "a float", 2.0)?,
+            kw.value("max_area_spread", "a float", DEFAULT_MAX_AREA_SPREAD)?,
+            &kw.text("pack", "square")?,
+            &kw.text("scale", "uniform")?,
             strict,
         )?),
     })

@@ -68,3 +68,28 @@ def test_atlas_of_spot_matches_cli_and_is_overlap_free(tmp_path):
     p = uv[F_uv]
     signed = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0])
     assert np.all(signed > 0)  # no face turned over
+
+
+def test_atlas_cones_given_auto_and_unpacked():
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    _, _, placed = conformap.atlas(V, F, cones=8)
+    pairs = [(c["vertex"], c["angle_deg"]) for c in placed["atlas"]["cone_list"]]
+    assert len(pairs) == 8
+    # the placed cones given back, as a list and as an array: the same map
+    for given in (pairs, np.array(pairs)):
+        _, _, report = conformap.atlas(V, F, cones=given)
+        assert report["atlas"]["area_spread"] == pytest.approx(placed["atlas"]["area_spread"], abs=1e-9)
+    # Gauss–Bonnet: the curvatures 360 - angle must add up to 720 on closed genus 0
+    with pytest.raises(conformap.ConformapError, match="Gauss–Bonnet"):
+        conformap.atlas(V, F, cones=[(v, a + 10.0) for v, a in pairs])
+    with pytest.raises(conformap.ConformapError, match=r"cones\[0\]"):
+        conformap.atlas(V, F, cones=[(len(V), 270.0)])
+    # auto: the fewest cones that reach the spread asked for
+    _, _, auto = conformap.atlas(V, F, cones="auto", max_area_spread=1.2)
+    assert auto["atlas"]["area_spread"] <= 1.2
+    assert auto["atlas"]["auto_cones"]["counts"] == [auto["atlas"]["cones"]]
+    # packing off: texture units are layout units (spot is about 1 across), no overlap
+    uv, F_uv, kept = conformap.atlas(V, F, pack="none")
+    assert kept["atlas"]["packing"] == "none"
+    assert uv.max() > 1.0
+    assert kept["atlas"]["overlap"]["covered_twice"] == 0

@@ -120,11 +120,14 @@ pub fn mesh_hint(e: &conformap_mesh::MeshError) -> Option<&'static str> {
         }
         E::NonManifoldEdge { .. } => {
             "delete the extra faces on that edge or split it apart in a mesh editor (Blender: \
-             Select > All by Trait > Non Manifold); no automatic repair is safe"
+             Select > All by Trait > Non Manifold); no automatic repair is safe, but \
+             `conformap atlas` accepts it: it cuts the edge into manifold sheets (its report \
+             says where)"
         }
         E::NonManifoldVertex { .. } => {
             "split the vertex into one per fan of faces (Blender: Mesh > Split > Faces by \
-             Edges) or delete one fan; no automatic repair is safe"
+             Edges) or delete one fan; no automatic repair is safe, but `conformap atlas` \
+             accepts it: it splits the vertex into one per fan (its report says where)"
         }
         E::InconsistentOrientation { .. } => {
             "`conformap disk --repair` (or `info --repair`) re-orients the faces consistently \

@@ -9,6 +9,7 @@
 //! the cones are placed in the metric pinned there and joined to the loops.
 
 mod cut;
+mod given;
 mod quality;
 mod repair;
 pub(crate) mod split;
@@ -22,6 +23,7 @@ use num_complex::Complex64;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
+pub use given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
@@ -120,6 +122,22 @@ pub fn chart_closed(
     cones: usize,
     options: &ConeOptions,
 ) -> Result<Chart, AtlasError> {
+    let place = |metric: &ConeMetric| place_cones(metric, cones, options);
+    let metric_needed = cones > 0 || mesh.boundary_loops().is_empty();
+    chart_closed_by(mesh, metric_needed.then_some(&place))
+}
+
+/// [`chart_closed`] with the cones chosen by `place` from the surface's cone metric (one
+/// factorization, however many sets `place` tries); `None` on a surface with boundary:
+/// no cones, the free boundary. The hook of given cones and of `--cones auto`
+/// (module `given`).
+///
+/// # Errors
+/// As [`chart_closed`].
+pub(crate) fn chart_closed_by(
+    mesh: &TriMesh,
+    place: Option<&dyn Fn(&ConeMetric) -> ConeSet>,
+) -> Result<Chart, AtlasError> {
     // a surface with boundary comes here with genus 0: a planar domain needs no cut
     let handles = mesh.boundary_loops().is_empty() && mesh.genus() != Some(0);
     let (edges, on_cut) = if handles {
@@ -132,10 +150,15 @@ pub fn chart_closed(
         (edges, none)
     };
     let edges = &edges;
-    if cones == 0 && !mesh.boundary_loops().is_empty() {
-        // boundary first flattening's free boundary: no cone metric to factor
-        return flatten_cut(mesh, edges, on_cut, ConeSet::none(mesh.num_vertices()), 0.0);
-    }
+    let no_cones = |metric: &ConeMetric| place_cones(metric, 0, &ConeOptions::DEFAULT);
+    let place = match place {
+        Some(place) => place,
+        None if mesh.boundary_loops().is_empty() => &no_cones,
+        None => {
+            // boundary first flattening's free boundary: no cone metric to factor
+            return flatten_cut(mesh, edges, on_cut, ConeSet::none(mesh.num_vertices()), 0.0);
+        }
+    };
     let metric = if !handles {
         ConeMetric::new(mesh)?
     } else {
@@ -148,7 +171,7 @@ pub fn chart_closed(
         }
         ConeMetric::with_pinned(mesh, &pinned)?
     };
-    let set = place_cones(&metric, cones, options);
+    let set = place(&metric);
     let handle_length = cut_length(mesh, edges, &on_cut);
     flatten_cut(mesh, edges, on_cut, set, handle_length)
 }

@@ -3,8 +3,11 @@
 //! everything packed into `[0,1]²` with one texel density.
 
 use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
-use conformap_atlas::{atlas_peak_bytes, build_atlas, AtlasOptions, PackOptions};
+use conformap_atlas::{
+    atlas_peak_bytes, build_atlas_with_cones, AtlasOptions, ChartScale, Layout, PackOptions,
+};
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
 use conformap_metrics::{corner_map_metrics, MetricsOptions};
@@ -14,11 +17,36 @@ use crate::failure::Failure;
 use crate::pipeline::{Input, InputOptions, MapJob, OutputOptions, Solved, TexCoords};
 use crate::report::{MetricsSection, SolverDetail, SolverSection, StageTimings};
 
+mod cones;
+
+pub use cones::{parse_cone_file, GivenCone, GivenCones, GAUSS_BONNET_TOLERANCE_DEG};
+
+/// The area spread `--cones auto` aims at unless `--max-area-spread` says otherwise: 1.0,
+/// the spread boundary first flattening reaches on spot with its default 8 cones (1.01):
+/// an automatic atlas at least as even as that, with as few cones (seams) as it takes.
+pub const DEFAULT_MAX_AREA_SPREAD: f64 = 1.0;
+
+/// Where the cones of an atlas come from.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ConeChoice {
+    /// Placed automatically, as many as [`AtlasJob::cones`] says (`--cones N`, default).
+    Count,
+    /// As many per component as bring its area spread to [`AtlasJob::max_area_spread`]
+    /// (`--cones auto`).
+    Auto,
+    /// Given: a file of `<vertex> <cone angle in degrees>` lines (`--cones FILE`).
+    File(PathBuf),
+    /// Given: a list (the Python package's array of `(vertex, angle)`).
+    List(GivenCones),
+}
+
 /// Arguments of `conformap atlas`.
 #[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct AtlasJob {
-    /// The mesh: any number of components, each a valid manifold surface of any topology.
+    /// The mesh: any number of components, each a valid surface of any topology; a
+    /// non-manifold vertex or edge is split there ([`crate::pipeline::read_input_splitting`]).
     pub input: InputOptions,
     /// The outputs: `-o` holds one texture coordinate per face corner (`f v/vt`, the `v`
     /// lines in the input's order), every coordinate in `[0,1]²`; `--flat` the atlas as a
@@ -31,6 +59,17 @@ pub struct AtlasJob {
     pub resolution: usize,
     /// Empty texels between charts. Default: 2.
     pub margin: f64,
+    /// Where the cones come from. Default: [`ConeChoice::Count`].
+    pub cone_choice: ConeChoice,
+    /// The area spread per component `--cones auto` stops at. Default:
+    /// [`DEFAULT_MAX_AREA_SPREAD`].
+    pub max_area_spread: f64,
+    /// `--pack none`: the charts kept in their own coordinates (texture units = 3D units
+    /// about), moved apart side by side, not packed into `[0,1]²`. Default: false.
+    pub pack_none: bool,
+    /// `--scale per-chart`: every chart scaled to the same texture area instead of one
+    /// texel density for the whole atlas. Default: false.
+    pub per_chart_scale: bool,
 }
 
 impl AtlasJob {
@@ -42,6 +81,10 @@ impl AtlasJob {
             cones: None,
             resolution: PackOptions::DEFAULT.resolution,
             margin: PackOptions::DEFAULT.margin_texels,
+            cone_choice: ConeChoice::Count,
+            max_area_spread: DEFAULT_MAX_AREA_SPREAD,
+            pack_none: false,
+            per_chart_scale: false,
         }
     }
 
@@ -57,7 +100,31 @@ impl AtlasJob {
         o.pack = PackOptions::DEFAULT
             .with_resolution(self.resolution)
             .with_margin_texels(self.margin);
+        if self.cone_choice == ConeChoice::Auto {
+            o.max_area_spread = Some(self.max_area_spread);
+        }
+        if self.pack_none {
+            o.layout = Layout::Keep;
+        }
+        if self.per_chart_scale {
+            o.scale = ChartScale::PerChart;
+        }
         o
+    }
+
+    /// The given cones, read and checked against `mesh`; `None` when they are placed.
+    fn given_cones(&self, input: &Input) -> Result<Option<Vec<(u32, f64)>>, Failure> {
+        let given = match &self.cone_choice {
+            ConeChoice::File(path) => parse_cone_file(path)?,
+            ConeChoice::List(list) => list.clone(),
+            _ => return Ok(None),
+        };
+        let n = input.mesh.num_vertices();
+        let copies = match &input.split {
+            Some(s) => &s.vertex_to_input[n - s.report.vertices_added..],
+            None => &[][..],
+        };
+        given.check(&input.mesh, copies).map(Some)
     }
 }
 
@@ -78,7 +145,20 @@ impl MapJob for AtlasJob {
         &self.output
     }
 
+    fn other_inputs(&self) -> Vec<&Path> {
+        match &self.cone_choice {
+            ConeChoice::File(path) => vec![path.as_path()],
+            _ => Vec::new(),
+        }
+    }
+
     fn check_usage(&self) -> Result<(), Failure> {
+        if !(self.max_area_spread > 0.0 && self.max_area_spread.is_finite()) {
+            return Err(Failure::Usage(format!(
+                "--max-area-spread must be a finite number above 0, got {}",
+                self.max_area_spread
+            )));
+        }
         if self.resolution == 0 {
             return Err(Failure::Usage(
                 "--resolution must be at least 1 texel".into(),
@@ -93,15 +173,25 @@ impl MapJob for AtlasJob {
         Ok(())
     }
 
+    fn splits_non_manifold(&self) -> bool {
+        true
+    }
+
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
         atlas_peak_bytes(mesh)
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
         let mesh = &input.mesh;
+        let given = self.given_cones(input)?;
         let t = std::time::Instant::now();
-        let atlas = build_atlas(mesh.positions(), mesh.faces(), &self.options())
-            .map_err(|e| input.fail(Failure::Numerical(e.to_string())))?;
+        let atlas = build_atlas_with_cones(
+            mesh.positions(),
+            mesh.faces(),
+            &self.options(),
+            given.as_deref(),
+        )
+        .map_err(|e| input.fail(Failure::Numerical(e.to_string())))?;
         let solve_ms = t.elapsed().as_secs_f64() * 1e3;
         let t = std::time::Instant::now();
         let corner: Vec<Complex64> = atlas
@@ -111,13 +201,15 @@ impl MapJob for AtlasJob {
             .collect();
         let metrics = corner_map_metrics(mesh, &corner, &MetricsOptions::DEFAULT)?;
         let metrics_ms = t.elapsed().as_secs_f64() * 1e3;
+        let mut atlas = atlas;
+        atlas.report.non_manifold = input.split.as_ref().map(|s| s.report.clone());
         let r = &atlas.report;
         let solver = SolverSection::new(r.summary(), SolverDetail::None);
         let clean = solver.summary.converged;
         let uv = shared_corner_uv(mesh, &atlas.uv);
         let flat_points = uv.texcoords.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let flat_faces = uv.faces.clone();
-        let summary = format!(
+        let mut summary = format!(
             "{} vertices, {} faces; {} component(s), {} chart(s), {} cone(s); area spread {:.3}, \
              mean angle distortion {:.3}°, flipped faces {}, texels covered twice {}, packing {:.2}",
             mesh.num_vertices(),
@@ -131,6 +223,31 @@ impl MapJob for AtlasJob {
             r.overlap.covered_twice,
             r.packing_efficiency,
         );
+        if let Some(auto) = &r.auto_cones {
+            summary.push_str(&format!(
+                "; --cones auto: {:?} cone(s) per component for an area spread of at most {}",
+                auto.counts, auto.max_area_spread
+            ));
+            if !auto.capped.is_empty() {
+                summary.push_str(&format!(
+                    " (component(s) {:?} stopped at the cap of {} cones before reaching it)",
+                    auto.capped, auto.cap
+                ));
+            }
+        }
+        if let Some(s) = &r.non_manifold {
+            summary.push_str(&format!(
+                "; non-manifold input split: {} vertex(es) (first: {:?}) into {} more, {} edge(s) \
+                 of 3+ faces cut",
+                s.vertices_split, s.split_vertices, s.vertices_added, s.edges_split
+            ));
+        }
+        if self.pack_none {
+            summary.push_str("; packing off (charts in their own coordinates)");
+        }
+        if self.per_chart_scale {
+            summary.push_str("; one scale per chart");
+        }
         let strict_violation = (!clean).then(|| {
             format!(
                 "the atlas has {} flipped faces and {} texels covered twice",

@@ -18,6 +18,19 @@ pub struct Input {
     pub repairs: Option<RepairLog>,
     /// The path as given.
     pub path: std::path::PathBuf,
+    /// Where a non-manifold input was split (`atlas` only, [`read_input_splitting`];
+    /// `None`: read as it is).
+    pub split: Option<SplitInput>,
+}
+
+/// A non-manifold input made manifold by `atlas` ([`conformap_atlas::split_non_manifold`]).
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct SplitInput {
+    /// Where it was split.
+    pub report: conformap_atlas::SplitReport,
+    /// For each vertex of [`Input::mesh`], the file's vertex it is a copy of.
+    pub vertex_to_input: Vec<u32>,
 }
 
 impl Input {
@@ -25,7 +38,7 @@ impl Input {
     /// changed the mesh.
     pub fn file_layout(&self) -> Option<&SourceInfo> {
         let unchanged = self.repairs.as_ref().is_none_or(|log| !log.changed());
-        unchanged.then_some(&self.source)
+        (unchanged && self.split.is_none()).then_some(&self.source)
     }
 
     /// A command failure about this input, prefixed by its path.
@@ -45,9 +58,67 @@ pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
             source: loaded.source,
             repairs: None,
             path: path.to_path_buf(),
+            split: None,
         });
     }
     repair_input(conformap_io::read_raw_mesh(path)?)
+}
+
+/// Reads `path` as [`read_input`] does without `--repair`, except that a mesh refused only
+/// for a non-manifold vertex or edge is split there
+/// ([`conformap_atlas::split_non_manifold`]) and validated again: the `atlas` command's
+/// reading. Every other defect (and a non-manifold mesh that also has duplicate faces,
+/// which splitting would turn into a component of their own) keeps its refusal.
+///
+/// # Errors
+/// As [`read_input`]; for a split mesh, the validation's error on it.
+pub fn read_input_splitting(path: &Path) -> Result<Input, Failure> {
+    use conformap_mesh::MeshError as M;
+    let e = match conformap_io::read_mesh(path) {
+        Ok(loaded) => {
+            return Ok(Input {
+                mesh: loaded.mesh,
+                source: loaded.source,
+                repairs: None,
+                path: path.to_path_buf(),
+                split: None,
+            })
+        }
+        Err(e) => e,
+    };
+    let non_manifold = matches!(
+        &e,
+        conformap_io::IoError::InvalidMesh {
+            source: M::NonManifoldVertex { .. } | M::NonManifoldEdge { .. },
+            ..
+        }
+    );
+    if !non_manifold {
+        return Err(refusal(path, e));
+    }
+    let raw = conformap_io::read_raw_mesh(path)?;
+    let mut seen = std::collections::HashSet::with_capacity(raw.faces.len());
+    let duplicates = raw.faces.iter().any(|t| {
+        let mut k = *t;
+        k.sort_unstable();
+        !seen.insert(k)
+    });
+    if duplicates {
+        return Err(refusal(path, e));
+    }
+    let split = conformap_atlas::split_non_manifold(&raw.positions, &raw.faces);
+    let mesh = TriMesh::try_new(split.positions, split.faces)
+        .map_err(|e| Failure::from(raw.invalid_mesh(e)))?;
+    Ok(Input {
+        mesh,
+        source: raw.source,
+        repairs: None,
+        path: path.to_path_buf(),
+        split: Some(SplitInput {
+            report: split.report,
+            vertex_to_input: split.vertex_to_input,
+        }),
+    })
 }
 
 /// The failure of reading `path` without `--repair`: when the mesh is non-manifold only
@@ -129,6 +200,7 @@ pub fn repair_input(mut raw: RawMesh) -> Result<Input, Failure> {
         source: raw.source,
         repairs: Some(log),
         path,
+        split: None,
     })
 }
 
@@ -171,8 +243,13 @@ pub fn weld_and_repair(
 
 /// The repaired → input vertex map as text, one 0-based input vertex per line.
 pub fn vertex_map_text(log: &RepairLog) -> String {
-    let mut text = String::with_capacity(8 * log.vertex_to_input.len());
-    for v in &log.vertex_to_input {
+    vertex_list_text(&log.vertex_to_input)
+}
+
+/// A vertex map as text: one 0-based input vertex per line, for each output vertex.
+pub fn vertex_list_text(vertex_to_input: &[u32]) -> String {
+    let mut text = String::with_capacity(8 * vertex_to_input.len());
+    for v in vertex_to_input {
         text.push_str(&v.to_string());
         text.push('\n');
     }

@@ -24,7 +24,7 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 
-pub use input::{read_input, repair_input, Input};
+pub use input::{read_input, read_input_splitting, repair_input, Input, SplitInput};
 pub use memory::MemoryCheck;
 pub use options::{parse_size, InputOptions, OutputOptions};
 pub use outputs::{check_command_outputs, check_outputs, Staged};
@@ -66,6 +66,11 @@ pub trait MapJob {
     fn peak_bytes(&self, mesh: &TriMesh) -> u64;
     /// Computes the map, its metrics and its report sections.
     fn solve(&self, input: &Input) -> Result<Solved, Failure>;
+    /// Whether the command takes a non-manifold mesh, split at its non-manifold vertices and
+    /// edges ([`read_input_splitting`]; `atlas`). Default: false (refused with its hint).
+    fn splits_non_manifold(&self) -> bool {
+        false
+    }
     /// Where the map lands, for the `--png` pictures. Default: the plane.
     fn picture_domain(&self) -> PictureDomain {
         PictureDomain::Plane
@@ -95,6 +100,13 @@ pub fn run_map(cmd: &dyn MapJob) -> Result<Outcome, Failure> {
     let t_all = Instant::now();
     let (input_args, output) = (cmd.input(), cmd.output());
     cmd.check_usage()?;
+    if input_args.vertex_map.is_some() && !input_args.repair && !cmd.splits_non_manifold() {
+        return Err(Failure::Usage(
+            "--vertex-map needs --repair (only `atlas` writes one without it: the map of the \
+             vertices it splits on a non-manifold mesh)"
+                .into(),
+        ));
+    }
     check_command_outputs(input_args, output, &cmd.other_inputs())?;
     let mesh_path = &input_args.mesh;
     let memory = MemoryCheck::before_reading(mesh_path, input_args.max_memory)
@@ -102,7 +114,11 @@ pub fn run_map(cmd: &dyn MapJob) -> Result<Outcome, Failure> {
     let reading = context::reserve(memory.read_estimate);
     context::stage(format!("reading {}", mesh_path.display()));
     let t = Instant::now();
-    let input = read_input(mesh_path, input_args.repair)?;
+    let input = if cmd.splits_non_manifold() && !input_args.repair {
+        read_input_splitting(mesh_path)?
+    } else {
+        read_input(mesh_path, input_args.repair)?
+    };
     let read_ms = ms_since(t);
     drop(reading);
     let (solved, mut report) = solve_and_report(cmd, &input, memory, read_ms)?;
@@ -139,6 +155,17 @@ pub fn run_map(cmd: &dyn MapJob) -> Result<Outcome, Failure> {
     }
     if let (Some(path), Some(log)) = (&input_args.vertex_map, &input.repairs) {
         staged.text(path, &input::vertex_map_text(log))?;
+    } else if let Some(path) = &input_args.vertex_map {
+        // a command that splits non-manifold input: the split's map, or the identity
+        let identity: Vec<u32>;
+        let map = match &input.split {
+            Some(split) => &split.vertex_to_input,
+            None => {
+                identity = (0..mesh.num_vertices() as u32).collect();
+                &identity
+            }
+        };
+        staged.text(path, &input::vertex_list_text(map))?;
     }
     report.timings_ms.write = ms_since(t);
     report.timings_ms.total = ms_since(t_all);
