@@ -7,10 +7,11 @@ use conformap_operators::planar;
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::chart::given::{chart_auto, chart_given, AutoCones};
 use crate::chart::{
-    chart_auto, chart_component, chart_given, chart_quality, detach_folded, flipped_corner_faces,
-    split_overlapping, AutoCones, Chart, ChartQuality, Piece,
+    chart_component, chart_quality, detach_folded, flipped_corner_faces, split_overlapping, Piece,
 };
+use crate::component::ComponentChart;
 use crate::cones::{Cone, ConeOptions};
 use crate::error::AtlasError;
 use crate::layout::{keep_in_rows, per_chart_factors, ChartScale, Layout};
@@ -58,25 +59,6 @@ impl Default for AtlasOptions {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-/// One component's chart and where its faces and vertices came from.
-#[derive(Debug, Clone)]
-#[non_exhaustive]
-pub struct ComponentChart {
-    /// Input face of each of the component's faces.
-    pub faces: Vec<u32>,
-    /// Input vertex of each of the component's vertices.
-    pub vertices: Vec<u32>,
-    /// The component's mesh.
-    pub mesh: TriMesh,
-    /// Its chart.
-    pub chart: Chart,
-    /// Its quality in its own layout (before any split).
-    pub quality: ChartQuality,
-    /// The flat pieces it was laid out as: one, or more where the chart overlapped itself
-    /// and was split.
-    pub pieces: Vec<Piece>,
 }
 
 /// The numbers of an atlas, for reports.
@@ -138,7 +120,7 @@ pub struct ConeEntry {
 pub struct AutoConesReport {
     /// The area spread asked for (per component, of its cone metric).
     pub max_area_spread: f64,
-    /// The most cones tried per component ([`crate::chart::MAX_AUTO_CONES`]).
+    /// The most cones tried per component ([`crate::chart::given::MAX_AUTO_CONES`]).
     pub cap: usize,
     /// Cones chosen on each component.
     pub counts: Vec<usize>,
@@ -270,7 +252,7 @@ pub fn build_atlas_with_cones(
     if let Some(spread) = options.max_area_spread.filter(|_| given.is_none()) {
         report.auto_cones = Some(AutoConesReport {
             max_area_spread: spread,
-            cap: crate::chart::MAX_AUTO_CONES,
+            cap: crate::chart::given::MAX_AUTO_CONES,
             counts: autos.iter().map(|a| a.count).collect(),
             capped: (0..autos.len()).filter(|&i| autos[i].capped).collect(),
         });

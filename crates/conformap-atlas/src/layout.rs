@@ -1,8 +1,8 @@
 //! The options of an atlas that are not packing proper: charts kept in their own
 //! coordinates (`--pack none`) and one texel density per chart (`--scale per-chart`).
 
-use crate::build::ComponentChart;
 use crate::chart::Piece;
+use crate::component::ComponentChart;
 use crate::error::AtlasError;
 use crate::pack::{ChartPlacement, PackOptions, Packing};
 

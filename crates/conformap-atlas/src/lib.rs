@@ -52,6 +52,7 @@
 
 mod build;
 pub mod chart;
+mod component;
 pub mod cones;
 mod error;
 pub mod hull;
@@ -65,12 +66,11 @@ mod summary;
 
 pub use build::{
     build_atlas, build_atlas_with_cones, split_components, Atlas, AtlasOptions, AtlasReport,
-    AutoConesReport, ComponentChart, ConeEntry,
+    AutoConesReport, ConeEntry,
 };
-pub use chart::{
-    chart_auto, chart_closed, chart_component, chart_given, chart_quality, AutoCones, Chart,
-    ChartQuality, MAX_AUTO_CONES,
-};
+pub use chart::given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
+pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
+pub use component::ComponentChart;
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 pub use error::AtlasError;
 pub use layout::{keep_in_rows, ChartScale, Layout};

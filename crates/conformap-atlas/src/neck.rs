@@ -9,9 +9,9 @@
 
 use num_complex::Complex64;
 
-use crate::build::ComponentChart;
 use crate::chart::split::{shortest_path, sides, sub_piece, PathGraph};
 use crate::chart::Piece;
+use crate::component::ComponentChart;
 use crate::error::AtlasError;
 use crate::hull::min_square_rect;
 use crate::pack::{fits_at, pack_outlined, pack_with, PackOptions, Packing};

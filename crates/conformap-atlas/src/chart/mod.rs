@@ -9,7 +9,7 @@
 //! the cones are placed in the metric pinned there and joined to the loops.
 
 mod cut;
-mod given;
+pub(crate) mod given;
 mod quality;
 mod repair;
 pub(crate) mod split;
@@ -23,7 +23,6 @@ use num_complex::Complex64;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
-pub use given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
