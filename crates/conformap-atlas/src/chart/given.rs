@@ -5,6 +5,8 @@
 use conformap_mesh::{fill_holes, TriMesh};
 use serde::Serialize;
 
+use super::repair::detach_folded;
+use super::split::{split_overlapping, Piece};
 use super::{chart_closed_by, chart_quality, drop_fans, Chart};
 use crate::cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
@@ -67,8 +69,8 @@ fn given_set(metric: &ConeMetric, cones: &[Cone]) -> ConeSet {
 /// [`MAX_AUTO_CONES`], each placed as [`place_cones`] does, all from one factorization.
 /// On a genus-0 surface with boundary, the cone-free free boundary comes first and is
 /// kept when its layout is within `max_spread`. The chosen count's layout is measured
-/// too: where its spread is still above `max_spread`, the search goes on from one cone
-/// more.
+/// too: where its spread is still above `max_spread`, or a face stays flipped after the
+/// atlas's repairs, the search goes on from one cone more.
 ///
 /// # Errors
 /// As [`super::chart_closed`].
@@ -102,12 +104,45 @@ pub fn chart_auto(
         // the layout reproduces the metric's spread up to the flattening's discretization
         // (eightsim at 0.2: 0.203): short of it, the search goes on from one cone more
         // (a factorization more)
+        // and a layout the atlas's repairs leave a flipped face in (armadillo at 1.0: 18
+        // cones, 1 face) is no answer either while more cones may give one
         let spread = chart_quality(mesh, &chart.cut, &chart.uv).area_spread;
-        if spread <= max_spread || auto.capped || auto.count >= MAX_AUTO_CONES {
+        let good = spread <= max_spread && flipped_after_repair(&chart)? == 0;
+        if good || auto.capped || auto.count >= MAX_AUTO_CONES {
             return Ok((chart, auto));
         }
         first = auto.count + 1;
     }
+}
+
+/// The faces of `chart` still flipped after the atlas's repairs of it (folded faces
+/// detached, overlapping pieces split), as `build_atlas` applies them.
+///
+/// # Errors
+/// Those of the repairs (none in practice on a valid chart).
+fn flipped_after_repair(chart: &Chart) -> Result<usize, AtlasError> {
+    let whole = Piece {
+        faces: (0..chart.cut.mesh.num_faces() as u32).collect(),
+        mesh: chart.cut.mesh.clone(),
+        original: chart.cut.original.clone(),
+        uv: chart.uv.clone(),
+    };
+    let mut flipped = 0;
+    for piece in detach_folded(whole)? {
+        for p in split_overlapping(piece, 0)? {
+            flipped += p
+                .mesh
+                .faces()
+                .iter()
+                .filter(|t| {
+                    let [a, b, c] = t.map(|v| p.uv[v as usize]);
+                    let (e1, e2) = (b - a, c - a);
+                    e1.re * e2.im - e1.im * e2.re <= 0.0
+                })
+                .count();
+        }
+    }
+    Ok(flipped)
 }
 
 /// One search of [`chart_auto`]: counts from `first` up, the first whose cone metric is
