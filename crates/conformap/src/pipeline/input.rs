@@ -53,13 +53,7 @@ impl Input {
 pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
     if !repair {
         let loaded = conformap_io::read_mesh(path).map_err(|e| refusal(path, e))?;
-        return Ok(Input {
-            mesh: loaded.mesh,
-            source: loaded.source,
-            repairs: None,
-            path: path.to_path_buf(),
-            split: None,
-        });
+        return Ok(as_read(path, loaded));
     }
     repair_input(conformap_io::read_raw_mesh(path)?)
 }
@@ -75,15 +69,7 @@ pub fn read_input(path: &Path, repair: bool) -> Result<Input, Failure> {
 pub fn read_input_splitting(path: &Path) -> Result<Input, Failure> {
     use conformap_mesh::MeshError as M;
     let e = match conformap_io::read_mesh(path) {
-        Ok(loaded) => {
-            return Ok(Input {
-                mesh: loaded.mesh,
-                source: loaded.source,
-                repairs: None,
-                path: path.to_path_buf(),
-                split: None,
-            })
-        }
+        Ok(loaded) => return Ok(as_read(path, loaded)),
         Err(e) => e,
     };
     let non_manifold = matches!(
@@ -119,6 +105,17 @@ pub fn read_input_splitting(path: &Path) -> Result<Input, Failure> {
             vertex_to_input: split.vertex_to_input,
         }),
     })
+}
+
+/// The input of a mesh read from `path` as it is (no repair, no split).
+fn as_read(path: &Path, loaded: conformap_io::LoadedMesh) -> Input {
+    Input {
+        mesh: loaded.mesh,
+        source: loaded.source,
+        repairs: None,
+        path: path.to_path_buf(),
+        split: None,
+    }
 }
 
 /// The failure of reading `path` without `--repair`: when the mesh is non-manifold only
