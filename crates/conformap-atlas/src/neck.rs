@@ -8,6 +8,7 @@
 //! [`NECK_GAIN`].
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 use crate::chart::split::{shortest_path, sides, sub_piece, PathGraph};
 use crate::chart::Piece;
@@ -40,6 +41,9 @@ pub const NECK_MIN_ARC: f64 = 0.15;
 /// Outline points a neck search looks at, at most: 400 (every k-th boundary vertex beyond
 /// that; pairs are quadratic in it).
 const NECK_SAMPLES: usize = 400;
+
+/// Pairs sorted at a time when the candidates are picked, narrowest first: 256.
+const PAIR_BLOCK: usize = 256;
 
 /// Rounds of cuts: 2 (a part can be cut again once).
 const NECK_ROUNDS: usize = 2;
@@ -114,43 +118,46 @@ pub(crate) fn cut_necks(
             lp.iter().for_each(|&v| on_loop[v as usize] = true);
             // each candidate judged by its parts' outlines (the loop's two arcs closed by
             // the path), the parts built for the best one only
-            let mut best: Option<(Packing, Vec<usize>)> = None;
             let pairs = candidates(piece, &lp);
             let graph = PathGraph::new(&piece.mesh);
-            for (i, j) in pairs {
-                let Some(path) = shortest_path(&piece.mesh, &graph, lp[i], lp[j]) else {
-                    continue;
-                };
-                let inner: Vec<u32> = path[..path.len() - 1]
-                    .iter()
-                    .map(|&h| piece.mesh.halfedge_vertices(h).1)
-                    .collect();
-                if inner.iter().any(|&v| on_loop[v as usize]) {
-                    continue;
-                }
-                let m = lp.len();
-                let first: Vec<[f64; 2]> = (i..=j)
-                    .map(|x| at(lp[x]))
-                    .chain(inner.iter().rev().map(|&v| at(v)))
-                    .collect();
-                let second: Vec<[f64; 2]> = (j..=i + m)
-                    .map(|x| at(lp[x % m]))
-                    .chain(inner.iter().map(|&v| at(v)))
-                    .collect();
-                let (mut pts, mut lps) = outlines(charts);
-                let slot = index_of(charts, c, k);
-                pts.splice(slot..=slot, [first.clone(), second.clone()]);
-                lps.splice(slot..=slot, [vec![first], vec![second]]);
-                let bar = best
-                    .as_ref()
-                    .map_or(packing.scale * (1.0 + NECK_GAIN).sqrt(), |b| b.0.scale);
-                // one packing at the bar first: most cuts do not reach it
-                if !fits_at(&lps, bar, pack) {
-                    continue;
-                }
-                let Ok(trial) = pack_with(&pts, &lps, pack, false) else {
-                    continue;
-                };
+            let first_bar = packing.scale * (1.0 + NECK_GAIN).sqrt();
+            // each candidate packed on its own core (they are independent), then taken in
+            // order: a trial is kept when it beats the bar and every trial kept before it
+            let trials: Vec<Option<(Packing, Vec<usize>)>> = pairs
+                .par_iter()
+                .map(|&(i, j)| {
+                    let path = shortest_path(&piece.mesh, &graph, lp[i], lp[j])?;
+                    let inner: Vec<u32> = path[..path.len() - 1]
+                        .iter()
+                        .map(|&h| piece.mesh.halfedge_vertices(h).1)
+                        .collect();
+                    if inner.iter().any(|&v| on_loop[v as usize]) {
+                        return None;
+                    }
+                    let m = lp.len();
+                    let first: Vec<[f64; 2]> = (i..=j)
+                        .map(|x| at(lp[x]))
+                        .chain(inner.iter().rev().map(|&v| at(v)))
+                        .collect();
+                    let second: Vec<[f64; 2]> = (j..=i + m)
+                        .map(|x| at(lp[x % m]))
+                        .chain(inner.iter().map(|&v| at(v)))
+                        .collect();
+                    let (mut pts, mut lps) = outlines(charts);
+                    let slot = index_of(charts, c, k);
+                    pts.splice(slot..=slot, [first.clone(), second.clone()]);
+                    lps.splice(slot..=slot, [vec![first], vec![second]]);
+                    // one packing at the bar first: most cuts do not reach it
+                    if !fits_at(&lps, first_bar, pack) {
+                        return None;
+                    }
+                    let trial = pack_with(&pts, &lps, pack, false).ok()?;
+                    Some((trial, path))
+                })
+                .collect();
+            let mut best: Option<(Packing, Vec<usize>)> = None;
+            for (trial, path) in trials.into_iter().flatten() {
+                let bar = best.as_ref().map_or(first_bar, |b| b.0.scale);
                 if trial.scale > bar {
                     best = Some((trial, path));
                 }
@@ -228,25 +235,41 @@ fn candidates(piece: &Piece, lp: &[u32]) -> Vec<(usize, usize)> {
             pairs.push(((z[j] - z[i]).norm() / short, i, j));
         }
     }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // narrowest first, ties by position (the order a stable sort of the generated pairs
+    // gives); the first few candidates come from the narrowest few hundred pairs, so the
+    // pairs are taken a block at a time (a selection, then a sort of the block) instead of
+    // one sort of up to 80,000
+    let cmp = |a: &(f64, usize, usize), b: &(f64, usize, usize)| {
+        a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2))
+    };
     let apart = |a: usize, b: usize| {
         let d = (arc[a] - arc[b]).abs();
         d.min(perimeter - d) >= 0.5 * NECK_MIN_ARC * perimeter
     };
     let mut out: Vec<(usize, usize)> = Vec::new();
-    for (_, i, j) in pairs {
-        if out.len() == NECK_CANDIDATES {
-            break;
+    let mut rest = &mut pairs[..];
+    while !rest.is_empty() && out.len() < NECK_CANDIDATES {
+        let k = PAIR_BLOCK.min(rest.len());
+        if k < rest.len() {
+            rest.select_nth_unstable_by(k - 1, cmp);
         }
-        if !out
-            .iter()
-            .all(|&(p, q)| (apart(i, p) || apart(j, q)) && (apart(i, q) || apart(j, p)))
-        {
-            continue;
+        let (block, tail) = rest.split_at_mut(k);
+        block.sort_unstable_by(cmp);
+        for &(_, i, j) in block.iter() {
+            if out.len() == NECK_CANDIDATES {
+                break;
+            }
+            if !out
+                .iter()
+                .all(|&(p, q)| (apart(i, p) || apart(j, q)) && (apart(i, q) || apart(j, p)))
+            {
+                continue;
+            }
+            if inside(&z, 0.5 * (z[i] + z[j])) {
+                out.push((i, j));
+            }
         }
-        if inside(&z, 0.5 * (z[i] + z[j])) {
-            out.push((i, j));
-        }
+        rest = tail;
     }
     out
 }

