@@ -72,15 +72,18 @@ pub(super) fn morph_key(
         .is_some_and(|c| c.summary.matched > 0 && c.summary.folded_at_full_move > 0);
     if tried && !placed.flips.is_empty() {
         let mut map = registered;
-        let other = place_s1(s1, k, &mut map, options, RimCut::Corners)?;
-        let (at_landmarks, at_corners) = (placed.flips.len(), other.flips.len());
-        if at_corners < at_landmarks {
-            placed = other;
+        // a corner warp that cannot be solved (two warp points at one place) only
+        // means the corner cut is not taken
+        let other = place_s1(s1, k, &mut map, options, RimCut::Corners).ok();
+        let at_landmarks = placed.flips.len();
+        let at_corners = other.as_ref().map(|o| o.flips.len());
+        if let Some(o) = other.filter(|o| o.flips.len() < at_landmarks) {
+            placed = o;
             registration.map = map;
         }
         if let Some(c) = placed.carried.as_mut() {
             c.summary.flipped_faces_cut_at_landmarks = Some(at_landmarks);
-            c.summary.flipped_faces_cut_at_corners = Some(at_corners);
+            c.summary.flipped_faces_cut_at_corners = at_corners;
         }
     }
     let Placed {

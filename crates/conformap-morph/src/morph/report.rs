@@ -122,7 +122,8 @@ pub struct CreaseSummary {
     /// the corner cut was tried too (`None`: not tried; the landmark cut flipped nothing
     /// or its carry folded nothing, or no loop was matched).
     pub flipped_faces_cut_at_landmarks: Option<usize>,
-    /// The same with the loops cut at their corners, when tried.
+    /// The same with the loops cut at their corners, when tried (`None` also when that
+    /// cut's corner warp could not be solved: the landmark cut is kept).
     pub flipped_faces_cut_at_corners: Option<usize>,
     /// The rim vertices share arc length in the disk (S1's and the registered disk),
     /// not along the rims in 3D: taken only when it folds fewer faces of S1's moved disk.
