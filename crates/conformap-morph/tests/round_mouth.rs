@@ -74,6 +74,11 @@ fn a_round_mouth_neither_folds_nor_degenerates() {
     // mouth's moves cut down where S1's disk folded 504 faces, 84 of 158 on the rims)
     assert_eq!((c.landmark_anchored, c.landmark_anchors), (3, 6), "{c:?}");
     assert!(c.rim_vertices == 158 && c.smallest_share >= 1.0, "{c:?}");
+    // the landmark cut's carry folds nothing, so the corner cut (the rims' two vertices
+    // farthest apart: the top and the bottom of the "O", 30 flipped faces) is not tried
+    assert_eq!(c.folded_at_full_move, 0, "{c:?}");
+    assert_eq!(c.corner_anchored, 0, "{c:?}");
+    assert_eq!(c.flipped_faces_cut_at_corners, None, "{c:?}");
 
     // the key frame: no face turned by more than 120° against the round face where it
     // lies (with the corners paired by distance: 21, and 30 turned by more than 90° in

@@ -192,6 +192,73 @@ pub(crate) enum Anchoring {
     /// At the loops' crossings with the ray from S1's loop's centre towards the landmark
     /// nearest to it (no landmark on both loops).
     Ray,
+    /// At the loops' two vertices farthest apart in 3D ([`RimCut::Corners`]).
+    Corners,
+}
+
+/// Where the matched loops are cut into the pieces whose arc length is shared
+/// ([`rim_targets`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum RimCut {
+    /// At the anchors the landmarks near the loops give (or a ray towards the nearest
+    /// landmark): what a round rim needs, the first choice.
+    Landmarks,
+    /// At each loop's two vertices farthest apart in 3D (the corners of a slit), S1's
+    /// corners paired with the key's by the smaller sum of distances in the disk. A
+    /// round rim has no such pair (the pairing can turn it by a quarter), but where the
+    /// landmarks lie off a slit's corners (wry's raised mouth corner) the corners are
+    /// the better anchors: the carrying tries them where the landmark cut leaves flipped
+    /// faces and keeps the cut that flips fewer.
+    Corners,
+}
+
+/// The positions in `lp` of its two vertices farthest apart in 3D, the first one first.
+fn farthest_pair(lp: &[u32], positions: &[[f64; 3]]) -> (usize, usize) {
+    let d2 = |a: [f64; 3], b: [f64; 3]| {
+        (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+    };
+    let mut best = (0, 0, -1.0);
+    for i in 0..lp.len() {
+        for j in i + 1..lp.len() {
+            let d = d2(positions[lp[i] as usize], positions[lp[j] as usize]);
+            if d > best.2 {
+                best = (i, j, d);
+            }
+        }
+    }
+    (best.0, best.1)
+}
+
+/// The anchors of [`RimCut::Corners`] for the counter-clockwise loops `a` (of `from`, arc
+/// lengths `la`) and `b` (of `onto`, `lb`): each loop's two vertices farthest apart in
+/// 3D, paired by the smaller sum of distances in the disk, in order along `a`.
+fn corner_anchors(
+    a: &[u32],
+    from: &LoopOn<'_>,
+    la: &[f64],
+    b: &[u32],
+    onto: &LoopOn<'_>,
+    lb: &[f64],
+) -> Vec<AnchorPair> {
+    let (a0, a1) = farthest_pair(a, from.positions);
+    let (b0, b1) = farthest_pair(b, onto.positions);
+    let near = |i: usize, j: usize| (from.disk[a[i] as usize] - onto.disk[b[j] as usize]).norm();
+    let pairs = if near(a0, b0) + near(a1, b1) <= near(a0, b1) + near(a1, b0) {
+        [(a0, b0), (a1, b1)]
+    } else {
+        [(a0, b1), (a1, b0)]
+    };
+    // a0 < a1: the pairs are in order along `a`; two anchors are always in the same
+    // cyclic order on both loops
+    pairs
+        .iter()
+        .map(|&(i, j)| AnchorPair {
+            on_from: la[i],
+            on_onto: lb[j],
+            at_from: from.disk[a[i] as usize],
+            onto_vertex: b[j],
+        })
+        .collect()
 }
 
 /// The first crossing of the ray `o + t u` (`t > 0`) with the closed polygon `poly`:
@@ -336,18 +403,38 @@ fn anchors(
 
 /// The anchors of matched loops, as [`rim_targets`] cuts them: the anchor on S1's loop
 /// (a point of S1's disk) and the key loop's vertex nearest to the matching anchor.
-pub(crate) fn anchor_points(from: &LoopOn<'_>, onto: &LoopOn<'_>) -> Vec<(Complex64, u32)> {
+pub(crate) fn anchor_points(
+    from: &LoopOn<'_>,
+    onto: &LoopOn<'_>,
+    cut: RimCut,
+) -> Vec<(Complex64, u32)> {
     let a = ccw(from.vertices, from.disk);
     let b = ccw(onto.vertices, onto.disk);
     let (la, lb) = (
         arc_lengths(&a, from.positions),
         arc_lengths(&b, onto.positions),
     );
-    anchors(&a, from, &la, &b, onto, &lb)
+    cut_anchors(&a, from, &la, &b, onto, &lb, cut)
         .0
         .into_iter()
         .map(|p| (p.at_from, p.onto_vertex))
         .collect()
+}
+
+/// The anchors of `cut`: [`anchors`] or [`corner_anchors`].
+fn cut_anchors(
+    a: &[u32],
+    from: &LoopOn<'_>,
+    la: &[f64],
+    b: &[u32],
+    onto: &LoopOn<'_>,
+    lb: &[f64],
+    cut: RimCut,
+) -> (Vec<AnchorPair>, Anchoring) {
+    match cut {
+        RimCut::Landmarks => anchors(a, from, la, b, onto, lb),
+        RimCut::Corners => (corner_anchors(a, from, la, b, onto, lb), Anchoring::Corners),
+    }
 }
 
 /// The loops of S1 and of a key surface matched in S1's disk: pairs `(i, j)` of S1 loop
@@ -443,9 +530,10 @@ pub(crate) struct RimTarget {
 }
 
 /// The targets of S1 loop `from` on key loop `onto`, both oriented counter-clockwise in
-/// the disk, and how they were anchored: the loops are cut at their anchors (`anchors`:
-/// the points nearest to the landmarks near the loops, else the crossings of a ray from
-/// the loop's centre towards the nearest landmark), and every vertex of S1's loop goes
+/// the disk, and how they were anchored: the loops are cut at their anchors (`cut`:
+/// [`RimCut::Landmarks`], the points nearest to the landmarks near the loops, else the
+/// crossings of a ray from the loop's centre towards the nearest landmark; or
+/// [`RimCut::Corners`], the loops' two vertices farthest apart), and every vertex of S1's loop goes
 /// to the same share of arc length (`arc`) between the same two anchors on the key loop
 /// (with one anchor: the same share of the whole loop from it). Order along the loop is
 /// kept and no two vertices meet. `edge_face` gives, for a key-surface edge `(min, max)`,
@@ -466,6 +554,7 @@ pub(crate) fn rim_targets(
     facesk: &[[u32; 3]],
     edge_face: &HashMap<(u32, u32), u32>,
     arc: ArcLength,
+    cut: RimCut,
 ) -> (Vec<RimTarget>, Anchoring) {
     let (disk1, diskk) = (from.disk, onto.disk);
     let a = ccw(from.vertices, disk1);
@@ -479,7 +568,7 @@ pub(crate) fn rim_targets(
     };
     let (na, m) = (a.len(), b.len());
     let (whole_a, whole_b) = (la[na], ub[m]);
-    let (anchor, how) = anchors(&a, from, &la, &b, onto, &ub);
+    let (anchor, how) = cut_anchors(&a, from, &la, &b, onto, &ub, cut);
     let n_anchors = anchor.len();
     // the span from anchor `p` to the next one `q` (the whole loop with one anchor)
     let span = |from_s: f64, to_s: f64, whole: f64| {
@@ -614,7 +703,14 @@ mod tests {
         onto: &LoopOn<'_>,
         faces: &[[u32; 3]],
     ) -> (HashMap<u32, Complex64>, Anchoring) {
-        let (t, how) = rim_targets(from, onto, faces, &edge_faces(faces), ArcLength::Surface);
+        let (t, how) = rim_targets(
+            from,
+            onto,
+            faces,
+            &edge_faces(faces),
+            ArcLength::Surface,
+            RimCut::Landmarks,
+        );
         (t.into_iter().map(|t| (t.vertex, t.disk)).collect(), how)
     }
 

@@ -10,6 +10,7 @@ use num_complex::Complex64;
 use super::report::{CreaseSummary, KeyReport, LocateSummary};
 use super::rims::{carry_rims, Carried, KeyDisk, Rims};
 use super::{ms, MorphOptions, Prepared, Surface};
+use crate::creases::RimCut;
 use crate::quality::{flipped_against_key, flipped_at_vertices, largest_patch};
 use crate::{
     register_disk, LandmarkMode, Location, MorphError, Registration, TriangleGrid, WarpOptions,
@@ -24,6 +25,8 @@ pub(super) struct KeyResult {
     pub landing: Vec<Location>,
     /// The 3D positions of S1's vertices on surface `k`.
     pub key: Vec<[f64; 3]>,
+    /// The key frame's flipped faces ([`flipped_against_key`]).
+    pub flips: Vec<usize>,
     pub crease: Option<CreaseSummary>,
     pub register_ms: f64,
     pub locate_ms: f64,
@@ -56,9 +59,76 @@ pub(super) fn morph_key(
     )?;
     let register_ms = ms(t0);
     let t1 = Instant::now();
-    let carried = carry_creases(s1, k, &mut registration.map, options)?;
-    let s1_disk = &prepared[0].normalized;
-    let grid = TriangleGrid::new(&registration.map, surfaces[k].mesh.faces());
+    let registered = registration.map.clone();
+    let mut placed = place_s1(s1, k, &mut registration.map, options, RimCut::Landmarks)?;
+    // the landmark cut leaves flipped faces and its carry folded S1's disk (the rims'
+    // anchors are off the key's): the loops cut at their corners, from the registered
+    // disk as it was before the carrying (whose corner warp may change it). Where the
+    // carry folds nothing the flips are not the rims' (pout's two lie on the lip's curl,
+    // and either cut leaves them), and a second carry would only cost time.
+    let tried = placed
+        .carried
+        .as_ref()
+        .is_some_and(|c| c.summary.matched > 0 && c.summary.folded_at_full_move > 0);
+    if tried && !placed.flips.is_empty() {
+        let mut map = registered;
+        // a corner warp that cannot be solved (two warp points at one place) only
+        // means the corner cut is not taken
+        let other = place_s1(s1, k, &mut map, options, RimCut::Corners).ok();
+        let at_landmarks = placed.flips.len();
+        let at_corners = other.as_ref().map(|o| o.flips.len());
+        if let Some(o) = other.filter(|o| o.flips.len() < at_landmarks) {
+            placed = o;
+            registration.map = map;
+        }
+        if let Some(c) = placed.carried.as_mut() {
+            c.summary.flipped_faces_cut_at_landmarks = Some(at_landmarks);
+            c.summary.flipped_faces_cut_at_corners = at_corners;
+        }
+    }
+    let Placed {
+        carried,
+        locations,
+        landing,
+        key,
+        flips,
+    } = placed;
+    Ok(KeyResult {
+        registration,
+        locations,
+        landing,
+        key,
+        flips,
+        crease: carried.map(|c| c.summary),
+        register_ms,
+        locate_ms: ms(t1),
+    })
+}
+
+/// S1 placed on key surface `k`: its loops carried, its vertices and face centroids
+/// located, its key frame and the frame's flipped faces.
+struct Placed {
+    carried: Option<Carried>,
+    locations: Vec<Location>,
+    landing: Vec<Location>,
+    key: Vec<[f64; 3]>,
+    flips: Vec<usize>,
+}
+
+/// S1's loops carried onto key surface `k`'s (cut at `cut`; the corner warp may change
+/// the registered disk `map`), S1's vertices and face centroids located in `map`, the
+/// key frame and its flipped faces ([`flipped_against_key`]).
+fn place_s1(
+    s1: &S1Data<'_>,
+    k: usize,
+    map: &mut [Complex64],
+    options: &MorphOptions,
+    cut: RimCut,
+) -> Result<Placed, MorphError> {
+    let surfaces = s1.surfaces;
+    let carried = carry_creases(s1, k, map, options, cut)?;
+    let s1_disk = &s1.prepared[0].normalized;
+    let grid = TriangleGrid::new(map, surfaces[k].mesh.faces());
     // S1's disk, its crease loops moved onto this surface's (rims: exact edge locations
     // of the loop vertices; the corner warp may have changed the registered disk)
     let query = carried.as_ref().map_or(s1_disk, |c| &c.query);
@@ -77,15 +147,21 @@ pub(super) fn morph_key(
         .iter()
         .map(|f| grid.locate(f.iter().map(|&v| query[v as usize]).sum::<Complex64>() / 3.0))
         .collect();
-    let key = carry(&surfaces[k].mesh, &locations);
-    Ok(KeyResult {
-        registration,
+    let sk = &surfaces[k].mesh;
+    let key = carry(sk, &locations);
+    let flips = flipped_against_key(
+        &key,
+        surfaces[0].mesh.faces(),
+        sk.positions(),
+        sk.faces(),
+        &landing,
+    );
+    Ok(Placed {
+        carried,
         locations,
         landing,
         key,
-        crease: carried.map(|c| c.summary),
-        register_ms,
-        locate_ms: ms(t1),
+        flips,
     })
 }
 
@@ -96,6 +172,7 @@ fn carry_creases(
     k: usize,
     map: &mut [Complex64],
     options: &MorphOptions,
+    cut: RimCut,
 ) -> Result<Option<Carried>, MorphError> {
     let Some(r) = &s1.rims else {
         return Ok(None);
@@ -109,6 +186,7 @@ fn carry_creases(
             support: options.corner_warp_support,
             ..options.register.warp
         },
+        cut,
     };
     let mut c = carry_rims(r, k, key)?;
     if c.summary.corner_warp.is_some() {
@@ -140,9 +218,8 @@ pub(super) fn finish_report(
     });
     let (s1, sk) = (&surfaces[0].mesh, &surfaces[k].mesh);
     let (key, faces) = (&result.key, s1.faces());
-    let flips = flipped_against_key(key, faces, sk.positions(), sk.faces(), &result.landing);
-    r.key_frame_flipped_faces = flips.len();
-    r.key_frame_largest_flip_patch = largest_patch(faces, &flips);
+    r.key_frame_flipped_faces = result.flips.len();
+    r.key_frame_largest_flip_patch = largest_patch(faces, &result.flips);
     let at_vertices =
         flipped_at_vertices(key, faces, sk.positions(), sk.faces(), &result.locations);
     r.key_frame_flipped_faces_at_vertices = at_vertices.len();

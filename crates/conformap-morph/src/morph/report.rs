@@ -112,6 +112,19 @@ pub struct CreaseSummary {
     /// Matched pairs with no landmark near them, anchored where the ray from S1's
     /// loop's centre towards the nearest landmark crosses them.
     pub ray_anchored: usize,
+    /// Matched pairs cut at their two vertices farthest apart in 3D (the corners of a
+    /// slit) instead: tried only when the landmark cut's carry folds S1's disk
+    /// ([`Self::folded_at_full_move`] > 0) and leaves flipped faces in the key frame,
+    /// taken only when this cut leaves fewer ([`Self::flipped_faces_cut_at_landmarks`]).
+    pub corner_anchored: usize,
+    /// The key frame's flipped faces (the morph's own count,
+    /// [`crate::quality::flipped_against_key`]) with the loops cut at the landmarks, when
+    /// the corner cut was tried too (`None`: not tried; the landmark cut flipped nothing
+    /// or its carry folded nothing, or no loop was matched).
+    pub flipped_faces_cut_at_landmarks: Option<usize>,
+    /// The same with the loops cut at their corners, when tried (`None` also when that
+    /// cut's corner warp could not be solved: the landmark cut is kept).
+    pub flipped_faces_cut_at_corners: Option<usize>,
     /// The rim vertices share arc length in the disk (S1's and the registered disk),
     /// not along the rims in 3D: taken only when it folds fewer faces of S1's moved disk.
     pub arc_length_in_disk: bool,

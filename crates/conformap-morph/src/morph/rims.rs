@@ -13,7 +13,7 @@ use super::{MorphOptions, Surface};
 use crate::creases::untangle::{folded, untangle, Rings};
 use crate::creases::{
     anchor_points, crease_loops, edge_faces, match_loops, rim_targets, Anchoring, ArcLength,
-    LoopOn, RimExtension, RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
+    LoopOn, RimCut, RimExtension, RimTarget, RIM_HALVING_RADIUS, RIM_MOVE_HALVINGS,
 };
 use crate::register::warp_landmarks;
 use crate::{MorphError, WarpOptions, WarpReport};
@@ -109,12 +109,18 @@ impl<'a> Rims<'a> {
 /// The anchors of S1's loops and of key surface `k`'s (`sk`, registered disk `hk`),
 /// loops matched as [`carry_rims`] matches them: pairs (S1's anchor in S1's disk, the
 /// key loop's vertex at its anchor).
-fn anchor_pairs(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64]) -> Vec<(Complex64, u32)> {
+fn anchor_pairs(
+    r: &Rims<'_>,
+    k: usize,
+    sk: &TriMesh,
+    hk: &[Complex64],
+    cut: RimCut,
+) -> Vec<(Complex64, u32)> {
     match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk)
         .into_iter()
         .flat_map(|(i, j)| {
             let (from, onto) = r.loop_pair(k, sk, hk, i, j);
-            anchor_points(&from, &onto)
+            anchor_points(&from, &onto, cut)
         })
         .collect()
 }
@@ -131,7 +137,8 @@ pub(super) struct Carried {
 }
 
 /// The key surface `k` as the carrying sees it: its mesh, its landmarks, its registered
-/// disk (which the corner warp may change) and the warp's options.
+/// disk (which the corner warp may change), the warp's options and where the loops are
+/// cut.
 pub(super) struct KeyDisk<'k> {
     /// The key surface's mesh.
     pub mesh: &'k TriMesh,
@@ -142,6 +149,8 @@ pub(super) struct KeyDisk<'k> {
     /// The options of the corner warp (the registration's landmark warp with the support
     /// [`super::MorphOptions::corner_warp_support`]).
     pub warp: WarpOptions,
+    /// Where the matched loops are cut ([`RimCut`]).
+    pub cut: RimCut,
 }
 
 /// What [`rim_moves`] found: the moves of S1's matched loop vertices, their targets, and
@@ -153,11 +162,19 @@ struct RimMoves {
     landmark_anchored: usize,
     landmark_anchors: usize,
     ray_anchored: usize,
+    corner_anchored: usize,
 }
 
 /// The moves of S1's matched loop vertices onto key surface `k`'s loops (registered disk
 /// `hk`), with their targets.
-fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64], arc: ArcLength) -> RimMoves {
+fn rim_moves(
+    r: &Rims<'_>,
+    k: usize,
+    sk: &TriMesh,
+    hk: &[Complex64],
+    arc: ArcLength,
+    cut: RimCut,
+) -> RimMoves {
     let pairs = match_loops(&r.loops[0], r.s1_disk, &r.loops[k], hk);
     let edge_face = edge_faces(sk.faces());
     let mut out = RimMoves {
@@ -167,16 +184,18 @@ fn rim_moves(r: &Rims<'_>, k: usize, sk: &TriMesh, hk: &[Complex64], arc: ArcLen
         landmark_anchored: 0,
         landmark_anchors: 0,
         ray_anchored: 0,
+        corner_anchored: 0,
     };
     for &(i, j) in &pairs {
         let (from, onto) = r.loop_pair(k, sk, hk, i, j);
-        let (targets, how) = rim_targets(&from, &onto, sk.faces(), &edge_face, arc);
+        let (targets, how) = rim_targets(&from, &onto, sk.faces(), &edge_face, arc, cut);
         match how {
             Anchoring::Landmarks(n) => {
                 out.landmark_anchored += 1;
                 out.landmark_anchors += n;
             }
             Anchoring::Ray => out.ray_anchored += 1,
+            Anchoring::Corners => out.corner_anchored += 1,
         }
         for t in targets {
             out.moves[t.vertex as usize] = t.disk - r.s1_disk[t.vertex as usize];
@@ -232,14 +251,15 @@ pub(super) fn carry_rims(
         (query, at_extension, u)
     };
     let mut arc = ArcLength::Surface;
-    let mut found = rim_moves(r, k, sk, key.map, arc);
+    let cut = key.cut;
+    let mut found = rim_moves(r, k, sk, key.map, arc, cut);
     let (mut query, mut at_extension, mut untangled) = place(&found.moves);
     let mut folding = folded_centroids(r.s1.faces(), &query, r.sigma);
     if !folding.is_empty() {
         // where shares of 3D arc length fold S1's disk, shares of disk arc length may
         // fold less (wry's raised mouth corner: 24 faces after the untangling, against
         // 10): the one that folds fewer faces
-        let other = rim_moves(r, k, sk, key.map, ArcLength::Disk);
+        let other = rim_moves(r, k, sk, key.map, ArcLength::Disk, cut);
         let (q, at, u) = place(&other.moves);
         let f = folded_centroids(r.s1.faces(), &q, r.sigma);
         if f.len() < folding.len() {
@@ -254,7 +274,7 @@ pub(super) fn carry_rims(
         if let Some((corners, report)) = warp_corners(r, k, &mut key, &folding)? {
             summary.warped_corners = corners;
             summary.corner_warp = Some(report);
-            found = rim_moves(r, k, sk, key.map, arc);
+            found = rim_moves(r, k, sk, key.map, arc, cut);
             (query, _, untangled) = place(&found.moves);
             folding = folded_centroids(r.s1.faces(), &query, r.sigma);
         }
@@ -263,6 +283,7 @@ pub(super) fn carry_rims(
     summary.landmark_anchored = found.landmark_anchored;
     summary.landmark_anchors = found.landmark_anchors;
     summary.ray_anchored = found.ray_anchored;
+    summary.corner_anchored = found.corner_anchored;
     let RimMoves {
         moves, mut targets, ..
     } = found;
@@ -323,7 +344,7 @@ fn warp_corners(
     let sk = key.mesh;
     let near = |z: Complex64| folding.iter().any(|&c| (c - z).norm() < RIM_HALVING_RADIUS);
     let boundary = sk.boundary_flags();
-    let corners: Vec<(Complex64, u32)> = anchor_pairs(r, k, sk, key.map)
+    let corners: Vec<(Complex64, u32)> = anchor_pairs(r, k, sk, key.map, key.cut)
         .into_iter()
         .filter(|&(a, b)| {
             near(a)
