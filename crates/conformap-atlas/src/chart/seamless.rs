@@ -300,6 +300,17 @@ pub fn unfold_across_seams(chart: &mut Chart) -> usize {
     // twin[v]: the other copy of a two-copy vertex, with the quarter turn r taking the
     // twin's side to v's (z ↦ r z + t), from a seam edge at v
     let mut twin: Vec<Option<(u32, Complex64)>> = vec![None; n];
+    // a cone of a fraction of a turn with two copies (the cut runs through it) turns its
+    // two seams differently: it stays fixed
+    let mut fractional = vec![false; copies.len()];
+    for c in &chart.cones.cones {
+        let turns = c.defect / TAU;
+        if (turns - turns.round()).abs() > 1e-12 {
+            if let Some(x) = fractional.get_mut(c.vertex as usize) {
+                *x = true;
+            }
+        }
+    }
     let faces = cm.faces();
     let orig = chart.cut.original.clone();
     let mut by_edge: std::collections::HashMap<(u32, u32), usize> = Default::default();
@@ -329,7 +340,8 @@ pub fn unfold_across_seams(chart: &mut Chart) -> usize {
             let r = Complex64::from_polar(1.0, turns * FRAC_PI_2);
             let r = Complex64::new(r.re.round(), r.im.round());
             for (v, w) in [(a, p), (b, q)] {
-                if copies[orig[v as usize] as usize].len() == 2 && twin[v as usize].is_none() {
+                let o = orig[v as usize] as usize;
+                if copies[o].len() == 2 && !fractional[o] && twin[v as usize].is_none() {
                     twin[v as usize] = Some((w, r));
                     twin[w as usize] = Some((v, r.conj()));
                 }
