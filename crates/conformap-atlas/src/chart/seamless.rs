@@ -38,6 +38,10 @@ use crate::error::AtlasError;
 /// keeping their sum; on spot's 8 cones the second round already finds nothing).
 pub const QUANTIZE_ROUNDS: usize = 8;
 
+/// The fewest cones a seamless atlas places on a closed genus-0 component: 3 (its 4π of
+/// curvature in cones of at most 3π/2 each; `--cones 0`, 1 or 2 give 3).
+pub const MIN_CLOSED_CONES: usize = 3;
+
 /// The cone defects allowed with `--seamless`: multiples of π/2 whose cone angle
 /// `2π − k` lies in the placement's bounds [π/2, 4π], i.e. `k = j π/2`, `j ∈ [-4, 3]`.
 const STEPS: std::ops::RangeInclusive<i64> = -2..=3;
@@ -146,7 +150,8 @@ pub fn quantize_cones(metric: &ConeMetric, cones: &[Cone]) -> ConeSet {
 }
 
 /// Charts one component for a seamless atlas: genus 0 by the cone metric of `cones`
-/// placed cones (8 on a closed surface when `None`, none on one with boundary) rounded by
+/// placed cones (8 on a closed surface when `None`, at least [`MIN_CLOSED_CONES`] there;
+/// none on one with boundary) rounded by
 /// [`quantize_cones`], or the `given` cones as they are (the caller checks they are
 /// multiples of π/2); genus ≥ 1 by [`chart_one_form`] (holes filled first and dropped
 /// again on a surface with boundary), whatever the cone count.
@@ -167,6 +172,14 @@ pub fn chart_seamless(
     } else {
         let closed = mesh.boundary_loops().is_empty();
         let count = cones.unwrap_or(if closed { 8 } else { 0 });
+        // a closed genus-0 surface needs 4π of curvature in cones of at most 3π/2
+        // (`STEPS`): at least 3 of them, else the pinned vertex would take the rest as a
+        // hidden cone and the seams through it would not be rigid
+        let count = if closed {
+            count.max(MIN_CLOSED_CONES)
+        } else {
+            count
+        };
         if !closed && count == 0 {
             // a disk without cones has no seam: the free boundary
             chart_closed_by(mesh, None)?
