@@ -129,6 +129,7 @@ def atlas(
     max_area_spread: float = 1.0,
     pack: Literal["square", "none"] = "square",
     scale: Literal["uniform", "per-chart"] = "uniform",
+    seamless: bool = False,
     strict: bool = False,
     max_memory: Optional[int] = None,
 ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32], Report]:
@@ -147,6 +148,12 @@ def atlas(
     ``sum(360 - angle) == 720``). ``report["atlas"]["cone_list"]`` holds the cones of a run
     in that form. ``pack="none"`` keeps the charts in their own coordinates (``uv`` may
     leave [0, 1]²); ``scale="per-chart"`` gives every chart the same texture area.
+    ``seamless=True`` (``--seamless``): cone angles multiples of 90° and every seam a
+    rotation by a multiple of 90° plus a translation (genus ≥ 1: a holomorphic 1-form's
+    layout, seams pure translations), charts packed with quarter turns only;
+    ``report["atlas"]["seam_rotation_error_max"]`` (radians) and
+    ``["seam_rigid_residual_max"]`` (relative to the edge length) measure it. Not with
+    ``cones="auto"``.
 
     Returns ``(uv, F_uv, report)``: ``uv`` (k, 2) texture coordinates in [0, 1]², ``F_uv``
     (m, 3) their indices per face corner (face ``i`` of ``F`` has ``uv[F_uv[i]]``),

@@ -8,6 +8,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::chart::given::{chart_auto, chart_given, AutoCones};
+use crate::chart::seamless::{chart_seamless, seam_rigidity};
 use crate::chart::{
     chart_component, chart_quality, detach_folded, flipped_corner_faces, split_overlapping, Piece,
 };
@@ -35,6 +36,10 @@ pub struct AtlasOptions {
     pub layout: Layout,
     /// One texel density for the whole atlas (default) or one per chart.
     pub scale: ChartScale,
+    /// `--seamless`: cone angles multiples of π/2 and every seam a rotation by a multiple
+    /// of π/2 plus a translation ([`crate::chart::seamless`]; charts packed with quarter
+    /// turns only). Default: false.
+    pub seamless: bool,
 }
 
 impl AtlasOptions {
@@ -46,11 +51,18 @@ impl AtlasOptions {
         max_area_spread: None,
         layout: Layout::Pack,
         scale: ChartScale::Uniform,
+        seamless: false,
     };
 
     /// With a fixed number of cones on every component.
     pub fn with_cones(mut self, cones: usize) -> Self {
         self.cones = Some(cones);
+        self
+    }
+
+    /// Seamless or not ([`Self::seamless`]).
+    pub fn with_seamless(mut self, seamless: bool) -> Self {
+        self.seamless = seamless;
         self
     }
 }
@@ -102,6 +114,15 @@ pub struct AtlasReport {
     /// Where a non-manifold input was split before charting (`None`: it was manifold; set
     /// by the caller that split it, [`crate::split_non_manifold`]).
     pub non_manifold: Option<crate::SplitReport>,
+    /// Whether the atlas was built seamless ([`AtlasOptions::seamless`]).
+    pub seamless: bool,
+    /// Over the seam edges of the final texture coordinates, the largest distance (radians)
+    /// of the rotation from one side to the other from a multiple of π/2 (about 0 in a
+    /// seamless atlas; measured on every atlas).
+    pub seam_rotation_error_max: f64,
+    /// The largest residual of a seam edge after the nearest quarter-turn rigid map,
+    /// relative to its length ([`crate::chart::seamless::SeamRigidity`]).
+    pub seam_rigid_residual_max: f64,
 }
 
 /// A cone of the atlas, for reports.
@@ -169,6 +190,13 @@ pub fn build_atlas_with_cones(
     options: &AtlasOptions,
     given: Option<&[(u32, f64)]>,
 ) -> Result<Atlas, AtlasError> {
+    if options.seamless && options.max_area_spread.is_some() && given.is_none() {
+        return Err(AtlasError::InvalidOption {
+            name: "seamless",
+            value: "with an automatic cone count".into(),
+            why: "a seamless atlas takes a cone count or given cones (multiples of 90°)",
+        });
+    }
     let components = split_components(positions.len(), faces);
     let mut charts = Vec::with_capacity(components.len());
     let mut autos: Vec<AutoCones> = Vec::new();
@@ -176,6 +204,15 @@ pub fn build_atlas_with_cones(
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
         let chart = match (given, options.max_area_spread) {
+            _ if options.seamless => {
+                let local = given.map(|g| local_cones(g, &vertices));
+                chart_seamless(
+                    &mesh,
+                    options.cones,
+                    local.as_deref(),
+                    &options.cone_options,
+                )?
+            }
             (Some(given), _) => chart_given(&mesh, &local_cones(given, &vertices))?,
             (None, Some(spread)) => {
                 let (chart, auto) = chart_auto(&mesh, spread, &options.cone_options)?;
@@ -206,8 +243,12 @@ pub fn build_atlas_with_cones(
     }
     // one texel density, packed: by outlines, charts cut at necks where that packs denser;
     // otherwise (per-chart scale, or the charts kept in place) the rectangle packer or rows
+    // seamless: the charts turned by quarter turns only, so every seam stays one
+    let pack = options
+        .pack
+        .with_quarter_turns_only(options.pack.quarter_turns_only || options.seamless);
     let packing = if options.layout == Layout::Pack && options.scale == ChartScale::Uniform {
-        crate::neck::cut_necks(&mut charts, &options.pack)?
+        crate::neck::cut_necks(&mut charts, &pack)?
     } else {
         let outlines: Vec<Vec<[f64; 2]>> = charts
             .iter()
@@ -225,8 +266,8 @@ pub fn build_atlas_with_cones(
             .map(|(o, &f)| o.into_iter().map(|p| [f * p[0], f * p[1]]).collect())
             .collect();
         let mut packing = match options.layout {
-            Layout::Pack => pack_charts(&outlines, &options.pack)?,
-            Layout::Keep => keep_in_rows(&outlines, &options.pack)?,
+            Layout::Pack => pack_charts(&outlines, &pack)?,
+            Layout::Keep => keep_in_rows(&outlines, &pack)?,
         };
         for (place, f) in packing.charts.iter_mut().zip(&factors) {
             place.scale *= f;
@@ -409,6 +450,7 @@ fn report(
     let mean = logs.iter().sum::<f64>() / n;
     let area_spread = (logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / n).sqrt();
     let seams = seam_log_ratios(uv, charts);
+    let rigidity = seam_rigidity(uv, charts);
     let corners: f64 = charts.iter().map(|c| 3.0 * c.mesh.num_faces() as f64).sum();
     let angle_mean_deg = charts
         .iter()
@@ -446,6 +488,9 @@ fn report(
             ChartScale::PerChart => "per-chart",
         },
         non_manifold: None,
+        seamless: options.seamless,
+        seam_rotation_error_max: rigidity.rotation_error_max,
+        seam_rigid_residual_max: rigidity.rigid_residual_max,
     }
 }
 

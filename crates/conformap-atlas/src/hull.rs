@@ -122,6 +122,19 @@ pub fn min_square_rect(points: &[[f64; 2]]) -> BoundingRect {
     bounds(&hull, angle)
 }
 
+/// The bounding rectangle of `points` in their own axes, or turned a quarter so that its
+/// width is at least its height: the only turns a seamless atlas allows (a seam's rotation
+/// must stay a multiple of π/2).
+pub fn quarter_rect(points: &[[f64; 2]]) -> BoundingRect {
+    let hull = convex_hull(points);
+    let r = bounds(&hull, 0.0);
+    if r.size[1] > r.size[0] {
+        bounds(&hull, std::f64::consts::FRAC_PI_2)
+    } else {
+        r
+    }
+}
+
 /// The axis-aligned bounds of `points` turned by `angle`.
 fn bounds(points: &[[f64; 2]], angle: f64) -> BoundingRect {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);

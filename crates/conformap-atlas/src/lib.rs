@@ -69,6 +69,7 @@ pub use build::{
     AutoConesReport, ConeEntry,
 };
 pub use chart::given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
+pub use chart::seamless::{chart_seamless, quantize_cones, seam_rigidity, SeamRigidity};
 pub use chart::{chart_closed, chart_component, chart_quality, Chart, ChartQuality};
 pub use component::ComponentChart;
 pub use cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::AtlasError;
-use crate::hull::{min_area_rect, min_square_rect, rotate, BoundingRect};
+use crate::hull::{min_area_rect, min_square_rect, quarter_rect, rotate, BoundingRect};
 use crate::skyline;
 
 /// How charts are packed. `Default` is [`PackOptions::DEFAULT`].
@@ -22,6 +22,10 @@ pub struct PackOptions {
     /// Whether a chart may also be turned a quarter from its smallest rectangle when that
     /// packs lower. Default: true.
     pub turn: bool,
+    /// Whether charts may only be turned by quarter turns of their own axes (a seamless
+    /// atlas: the rotation across a seam between two charts changes by the difference of
+    /// their turns). Default: false (each chart turned to its smallest rectangle).
+    pub quarter_turns_only: bool,
     /// Steps of the bisection for the common scale. Default: 40 (the scale to 1e-12 of its
     /// upper bound; each step packs once, microseconds for hundreds of charts).
     pub scale_steps: usize,
@@ -33,6 +37,7 @@ impl PackOptions {
         resolution: 1024,
         margin_texels: 2.0,
         turn: true,
+        quarter_turns_only: false,
         scale_steps: 40,
     };
 
@@ -52,6 +57,25 @@ impl PackOptions {
     pub fn with_turn(mut self, turn: bool) -> Self {
         self.turn = turn;
         self
+    }
+
+    /// With charts turned by quarter turns only ([`Self::quarter_turns_only`]).
+    pub fn with_quarter_turns_only(mut self, only: bool) -> Self {
+        self.quarter_turns_only = only;
+        self
+    }
+
+    /// The smallest-area and smallest-square rectangles of `charts` (both the charts'
+    /// own axes, turned a quarter at most, with [`Self::quarter_turns_only`]).
+    fn rects(&self, charts: &[Vec<[f64; 2]>]) -> (Vec<BoundingRect>, Vec<BoundingRect>) {
+        if self.quarter_turns_only {
+            let r: Vec<BoundingRect> = charts.iter().map(|c| quarter_rect(c)).collect();
+            return (r.clone(), r);
+        }
+        (
+            charts.iter().map(|c| min_area_rect(c)).collect(),
+            charts.iter().map(|c| min_square_rect(c)).collect(),
+        )
     }
 }
 
@@ -164,8 +188,7 @@ pub(crate) fn pack_with(
     };
     // three ways to turn the charts (smallest area, smallest square, mixed) and four orders
     // for the skyline: the largest common scale of the twelve is kept
-    let area_rects: Vec<BoundingRect> = charts.iter().map(|c| min_area_rect(c)).collect();
-    let square_rects: Vec<BoundingRect> = charts.iter().map(|c| min_square_rect(c)).collect();
+    let (area_rects, square_rects) = options.rects(charts);
     // mixed: the charts that could fill a quarter of the square alone turned to their
     // smallest square, the others to their smallest area
     let total: f64 = area_rects.iter().map(|r| r.size[0] * r.size[1]).sum();
@@ -279,8 +302,7 @@ fn orders(area_rects: &[BoundingRect]) -> [Vec<usize>; 2] {
 /// quick test of whether a change to the charts can beat a scale reached before.
 pub(crate) fn fits_at(outlines: &[Vec<Vec<[f64; 2]>>], scale: f64, options: &PackOptions) -> bool {
     let points: Vec<Vec<[f64; 2]>> = outlines.iter().map(|o| o.concat()).collect();
-    let area_rects: Vec<BoundingRect> = points.iter().map(|c| min_area_rect(c)).collect();
-    let square_rects: Vec<BoundingRect> = points.iter().map(|c| min_square_rect(c)).collect();
+    let (area_rects, square_rects) = options.rects(&points);
     let turned = turned_charts(outlines, &area_rects, &square_rects, options);
     let n = options.resolution;
     let cell = if n >= 64 { PROFILE_CELL } else { 1.0 };

@@ -565,3 +565,68 @@ fn non_manifold_vertices_and_edges_are_split_by_atlas_only() {
     copies.sort_unstable();
     assert_eq!(copies, split);
 }
+
+#[test]
+fn seamless_spot_has_quarter_turn_seams_and_cones() {
+    let d = tmpdir("atlas-seamless");
+    let (out, rep) = (d.join("atlas.obj"), d.join("r.json"));
+    conformap_ok(&[
+        "atlas",
+        s(&fixture("spot.obj")),
+        "-o",
+        s(&out),
+        "--seamless",
+        "--report",
+        s(&rep),
+    ]);
+    let r = json(&rep);
+    let a = &r["atlas"];
+    assert_eq!(a["seamless"], true, "{a}");
+    let number = |k: &str| a[k].as_f64().expect("number");
+    assert!(number("seam_rotation_error_max") <= 1e-6, "{a}");
+    assert!(number("seam_rigid_residual_max") <= 1e-6, "{a}");
+    let cones = a["cone_list"].as_array().expect("cones");
+    assert!(!cones.is_empty());
+    for c in cones {
+        let q = c["angle_deg"].as_f64().expect("angle") / 90.0;
+        assert!((q - q.round()).abs() < 1e-9, "{c}");
+    }
+    check_atlas(&r, &out, 5856);
+}
+
+#[test]
+fn seamless_refuses_auto_cones_and_cones_off_quarter_turns() {
+    let d = tmpdir("atlas-seamless-bad");
+    let mesh = fixture("spot.obj");
+    let out = d.join("x.obj");
+    let o = conformap(&[
+        "atlas",
+        s(&mesh),
+        "-o",
+        s(&out),
+        "--seamless",
+        "--cones",
+        "auto",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--seamless"), "{}", stderr(&o));
+    assert!(!out.exists());
+    // Gauss–Bonnet holds (180 + 180 + 180 + 260 − 80 = 720° of curvature) but 100° and
+    // 440° are no quarter turns
+    let f = d.join("cones.txt");
+    std::fs::write(&f, "10 180\n500 180\n1000 180\n1500 100\n2000 440\n").expect("write");
+    let o = conformap(&[
+        "atlas",
+        s(&mesh),
+        "-o",
+        s(&out),
+        "--seamless",
+        "--cones",
+        s(&f),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("cones.txt") && e.contains("vertex 1500"), "{e}");
+    assert!(e.contains("hint:"), "{e}");
+    assert!(!out.exists());
+}

@@ -58,6 +58,7 @@ pub const ATLAS: &[&str] = &[
     "max_area_spread",
     "pack",
     "scale",
+    "seamless",
     "strict",
 ];
 
@@ -209,7 +210,7 @@ pub fn flatten_job(
 /// The `atlas` job of `atlas`'s keywords: `cones` an integer (placed), `"auto"` (as many
 /// as reach `max_area_spread`) or `(vertex, angle in degrees)` pairs (given, checked
 /// against the mesh as `--cones FILE`'s lines); `pack` `"square"` or `"none"`; `scale`
-/// `"uniform"` or `"per-chart"`.
+/// `"uniform"` or `"per-chart"`; `seamless` as `--seamless`.
 ///
 /// # Errors
 /// `ConformapError` (usage) for a negative `cones` or `resolution`, another string than
@@ -222,6 +223,7 @@ pub fn atlas_job(
     max_area_spread: f64,
     pack: &str,
     scale: &str,
+    seamless: bool,
     strict: bool,
 ) -> PyResult<AtlasJob> {
     let (input, output) = io(strict);
@@ -254,6 +256,7 @@ pub fn atlas_job(
             )))
         }
     };
+    job.seamless = seamless;
     job.per_chart_scale = match scale {
         "uniform" => false,
         "per-chart" => true,
@@ -437,6 +440,7 @@ pub fn template(
             kw.value("max_area_spread", "a float", DEFAULT_MAX_AREA_SPREAD)?,
             &kw.text("pack", "square")?,
             &kw.text("scale", "uniform")?,
+            kw.flag("seamless")?,
             strict,
         )?),
     })

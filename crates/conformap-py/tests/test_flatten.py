@@ -70,6 +70,23 @@ def test_atlas_of_spot_matches_cli_and_is_overlap_free(tmp_path):
     assert np.all(signed > 0)  # no face turned over
 
 
+def test_atlas_seamless_matches_cli(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    uv, F_uv, report = conformap.atlas(V, F, seamless=True)
+    code, cli, err = run_cli(["atlas", str(FIXTURES / "spot.obj"), "-o", str(tmp_path / "a.obj"), "--seamless"], tmp_path)
+    assert code == 0, err
+    a = report["atlas"]
+    assert a["seamless"] is True
+    assert a["seam_rotation_error_max"] <= 1e-6 and a["seam_rigid_residual_max"] <= 1e-6
+    assert a["area_spread"] == pytest.approx(cli["atlas"]["area_spread"], rel=1e-12)
+    for c in a["cone_list"]:
+        q = c["angle_deg"] / 90.0
+        assert abs(q - round(q)) < 1e-9
+    assert uv.min() >= 0.0 and uv.max() <= 1.0
+    with pytest.raises(conformap.ConformapError, match="--seamless"):
+        conformap.atlas(V, F, cones="auto", seamless=True)
+
+
 def test_atlas_cones_given_auto_and_unpacked():
     V, F = conformap.read_mesh(FIXTURES / "spot.obj")
     _, _, placed = conformap.atlas(V, F, cones=8)

@@ -187,7 +187,7 @@ fn chart_auto_from(
 /// Runs `chart` on `mesh`, or, when `mesh` has boundary and handles, on `mesh` with every
 /// hole filled by a centroid fan (original vertices keep their indices), the fans dropped
 /// again from the chart (as [`super::chart_component`] does).
-fn with_holes_filled(
+pub(crate) fn with_holes_filled(
     mesh: &TriMesh,
     chart: impl Fn(&TriMesh) -> Result<Chart, AtlasError>,
 ) -> Result<Chart, AtlasError> {

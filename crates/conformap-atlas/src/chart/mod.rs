@@ -12,6 +12,7 @@ mod cut;
 pub(crate) mod given;
 mod quality;
 mod repair;
+pub mod seamless;
 pub(crate) mod split;
 
 use conformap_disk::{flatten, FlattenBoundary, FlattenOptions};

@@ -107,7 +107,7 @@ pub fn detach_folded(piece: Piece) -> Result<Vec<Piece>, AtlasError> {
 }
 
 /// Vertices not `fixed` within `rings` edges of a folded face's vertices.
-fn region(
+pub(crate) fn region(
     mesh: &TriMesh,
     weights: &[Vec<(u32, f64)>],
     folded: &[usize],
@@ -145,7 +145,7 @@ fn region(
 
 /// Floater's mean value weights `w_ij = (tan(α/2) + tan(β/2)) / |x_j − x_i|` (α, β the
 /// 3D angles at `i` beside edge `ij`), per vertex as `(j, w_ij)`; all positive.
-fn mean_value_weights(mesh: &TriMesh) -> Vec<Vec<(u32, f64)>> {
+pub(crate) fn mean_value_weights(mesh: &TriMesh) -> Vec<Vec<(u32, f64)>> {
     let p = mesh.positions();
     let mut out: Vec<Vec<(u32, f64)>> = vec![Vec::new(); mesh.num_vertices()];
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];

@@ -45,6 +45,11 @@ pub struct AtlasArgs {
     /// Empty texels between charts (half of it at the square's edges).
     #[arg(long, default_value_t = 2.0)]
     pub margin: f64,
+    /// Seamless: cone angles multiples of 90° and every seam a rotation by a multiple of
+    /// 90° plus a translation (genus ≥ 1: a holomorphic 1-form's layout, whose seams are
+    /// translations); charts packed with quarter turns only. Costs area distortion.
+    #[arg(long)]
+    pub seamless: bool,
 }
 
 /// `--pack`.
@@ -82,6 +87,7 @@ impl AtlasArgs {
         job.per_chart_scale = self.scale == Scale::PerChart;
         job.resolution = self.resolution;
         job.margin = self.margin;
+        job.seamless = self.seamless;
         job
     }
 }

@@ -26,6 +26,11 @@ pub use cones::{parse_cone_file, GivenCone, GivenCones, GAUSS_BONNET_TOLERANCE_D
 /// an automatic atlas at least as even as that, with as few cones (seams) as it takes.
 pub const DEFAULT_MAX_AREA_SPREAD: f64 = 1.0;
 
+/// How close to a multiple of 90° a given cone angle must be with `--seamless`, in quarter
+/// turns: 1e-9 (a cone file written with 9 or more decimals of degrees passes; a real
+/// 89.9° cone does not).
+pub const SEAMLESS_ANGLE_TOLERANCE: f64 = 1e-9;
+
 /// Where the cones of an atlas come from.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -70,6 +75,10 @@ pub struct AtlasJob {
     /// `--scale per-chart`: every chart scaled to the same texture area instead of one
     /// texel density for the whole atlas. Default: false.
     pub per_chart_scale: bool,
+    /// `--seamless`: cone angles multiples of 90° and every seam a rotation by a multiple
+    /// of 90° plus a translation (genus ≥ 1: a holomorphic 1-form's layout, seams pure
+    /// translations); charts packed with quarter turns only. Default: false.
+    pub seamless: bool,
 }
 
 impl AtlasJob {
@@ -85,6 +94,7 @@ impl AtlasJob {
             max_area_spread: DEFAULT_MAX_AREA_SPREAD,
             pack_none: false,
             per_chart_scale: false,
+            seamless: false,
         }
     }
 
@@ -109,6 +119,7 @@ impl AtlasJob {
         if self.per_chart_scale {
             o.scale = ChartScale::PerChart;
         }
+        o.seamless = self.seamless;
         o
     }
 
@@ -124,7 +135,32 @@ impl AtlasJob {
             Some(s) => &s.vertex_to_input[n - s.report.vertices_added..],
             None => &[][..],
         };
-        given.check(&input.mesh, copies).map(Some)
+        let checked = given.check(&input.mesh, copies)?;
+        if self.seamless {
+            // a seamless atlas needs every cone angle a multiple of 90°
+            for &(v, defect) in &checked {
+                let quarters = defect / std::f64::consts::FRAC_PI_2;
+                if (quarters - quarters.round()).abs() > SEAMLESS_ANGLE_TOLERANCE {
+                    let source = match &self.cone_choice {
+                        ConeChoice::File(path) => path.display().to_string(),
+                        _ => "cones".into(),
+                    };
+                    return Err(Failure::BadInput(
+                        format!(
+                            "{source}: cone at vertex {v}: angle {:.6}° is not a multiple of 90°, which \
+                             --seamless needs",
+                            (std::f64::consts::TAU - defect).to_degrees()
+                        ),
+                        Some(
+                            "give cone angles of 90, 180, 270, 450, 540, ... degrees, or drop \
+                             --seamless"
+                                .into(),
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(Some(checked))
     }
 }
 
@@ -153,6 +189,14 @@ impl MapJob for AtlasJob {
     }
 
     fn check_usage(&self) -> Result<(), Failure> {
+        if self.seamless && self.cone_choice == ConeChoice::Auto {
+            return Err(Failure::Usage(
+                "--seamless takes --cones N or --cones FILE (angles multiples of 90°), not \
+                 --cones auto: rounding the cones to quarter turns changes the area spread \
+                 the automatic count aims at"
+                    .into(),
+            ));
+        }
         if !(self.max_area_spread > 0.0 && self.max_area_spread.is_finite()) {
             return Err(Failure::Usage(format!(
                 "--max-area-spread must be a finite number above 0, got {}",
@@ -247,6 +291,13 @@ impl MapJob for AtlasJob {
         }
         if self.per_chart_scale {
             summary.push_str("; one scale per chart");
+        }
+        if self.seamless {
+            summary.push_str(&format!(
+                "; seamless: seam rotation within {:.1e} rad of a quarter turn, residual after \
+                 the rigid map {:.1e} of the edge length",
+                r.seam_rotation_error_max, r.seam_rigid_residual_max
+            ));
         }
         let strict_violation = (!clean).then(|| {
             format!(
