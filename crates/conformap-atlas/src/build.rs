@@ -18,6 +18,12 @@ use crate::error::AtlasError;
 use crate::layout::{keep_in_rows, per_chart_factors, ChartScale, Layout};
 use crate::pack::{pack_charts, PackOptions, Packing};
 
+/// The largest seam rotation error (radians, from a quarter turn) and residual after the
+/// rigid map (relative to the edge length) a `--seamless` atlas may have: 1e-6 (rounding
+/// leaves 1e-11 at most on the shared meshes; a seam through a hidden cone is off by
+/// tenths).
+pub const SEAMLESS_TOLERANCE: f64 = 1e-6;
+
 /// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
@@ -232,6 +238,29 @@ pub fn build_atlas_with_cones(
         for piece in detach_folded(whole)? {
             pieces.extend(split_overlapping(piece, 0)?);
         }
+        if options.seamless {
+            // the repairs keep every piece's coordinates (rigid seams), so a fold they
+            // cannot detach stays: refused rather than written
+            let flipped: usize = pieces
+                .iter()
+                .map(|p| {
+                    let corner: Vec<Complex64> = p
+                        .mesh
+                        .faces()
+                        .iter()
+                        .flat_map(|t| t.map(|v| p.uv[v as usize]))
+                        .collect();
+                    flipped_corner_faces(&corner)
+                })
+                .sum();
+            if flipped > 0 {
+                return Err(AtlasError::SeamlessFolds {
+                    component: index,
+                    genus: mesh.genus().unwrap_or(0),
+                    flipped,
+                });
+            }
+        }
         charts.push(ComponentChart {
             faces: face_ids,
             vertices,
@@ -290,6 +319,15 @@ pub fn build_atlas_with_cones(
         }
     }
     let mut report = report(positions, faces, &uv, &charts, &packing, options);
+    if options.seamless
+        && !(report.seam_rotation_error_max <= SEAMLESS_TOLERANCE
+            && report.seam_rigid_residual_max <= SEAMLESS_TOLERANCE)
+    {
+        return Err(AtlasError::SeamlessNotRigid {
+            rotation: report.seam_rotation_error_max,
+            residual: report.seam_rigid_residual_max,
+        });
+    }
     if let Some(spread) = options.max_area_spread.filter(|_| given.is_none()) {
         report.auto_cones = Some(AutoConesReport {
             max_area_spread: spread,

@@ -55,4 +55,55 @@ pub enum AtlasError {
         /// Texels a side.
         resolution: usize,
     },
+    /// `--seamless` left folded faces on a component: the zeros of the holomorphic 1-form
+    /// of a genus ≥ 2 surface are cones of 4π, whose layout can fold beside them.
+    #[error(
+        "--seamless could not lay out component {component} (genus {genus}) without folds: \
+         {flipped} faces stay flipped beside the zeros of its holomorphic 1-form"
+    )]
+    SeamlessFolds {
+        /// The component (in the order of its first face).
+        component: usize,
+        /// Its genus.
+        genus: i64,
+        /// Faces left flipped.
+        flipped: usize,
+    },
+    /// `--seamless` left a seam that is no quarter-turn rigid map (beyond
+    /// [`crate::SEAMLESS_TOLERANCE`]).
+    #[error(
+        "--seamless left a seam that is not rigid: its rotation is {rotation:.2e} rad off a \
+         quarter turn and {residual:.2e} of the edge length is left after the rigid map"
+    )]
+    SeamlessNotRigid {
+        /// The largest rotation error, radians.
+        rotation: f64,
+        /// The largest residual, relative to the edge length.
+        residual: f64,
+    },
+}
+
+impl AtlasError {
+    /// What the user can do about it.
+    pub fn hint(&self) -> &'static str {
+        match self {
+            Self::InvalidOption { .. } => "change the option as the message says",
+            Self::TooManyCharts { .. } => "raise --resolution or lower --margin",
+            Self::SeamlessFolds { .. } | Self::SeamlessNotRigid { .. } => {
+                "run without --seamless: the default atlas lays out every genus without folds, \
+                 its seams of equal length on both sides but not rigid on genus ≥ 2"
+            }
+            Self::Component { .. } => {
+                "fix that component in the file or remove it (--repair keeps the largest \
+                 component only)"
+            }
+            Self::NonFinite { .. }
+            | Self::Factorization { .. }
+            | Self::Mesh(_)
+            | Self::Flatten(_) => {
+                "`conformap info MESH` shows degenerate or nearly coincident faces, which \
+                 break the solve; remove them and run again"
+            }
+        }
+    }
 }

@@ -235,7 +235,7 @@ impl MapJob for AtlasJob {
             &self.options(),
             given.as_deref(),
         )
-        .map_err(|e| input.fail(Failure::Numerical(e.to_string())))?;
+        .map_err(|e| input.fail(atlas_failure(&e)))?;
         let solve_ms = t.elapsed().as_secs_f64() * 1e3;
         let t = std::time::Instant::now();
         let corner: Vec<Complex64> = atlas
@@ -350,4 +350,19 @@ fn shared_corner_uv(mesh: &TriMesh, corner: &[[f64; 2]]) -> CornerUv {
         })
         .collect();
     CornerUv { texcoords, faces }
+}
+
+/// The failure of an atlas error: a layout the options or the input rule out is bad input
+/// (exit 1) with the atlas's hint; a solve that broke is numerical (exit 3), the hint
+/// in its message.
+fn atlas_failure(e: &conformap_atlas::AtlasError) -> Failure {
+    use conformap_atlas::AtlasError as E;
+    match e {
+        E::SeamlessFolds { .. }
+        | E::SeamlessNotRigid { .. }
+        | E::TooManyCharts { .. }
+        | E::Component { .. } => Failure::BadInput(e.to_string(), Some(e.hint().to_string())),
+        E::InvalidOption { .. } => Failure::Usage(e.to_string()),
+        _ => Failure::Numerical(format!("{e}\nhint: {}", e.hint())),
+    }
 }
