@@ -141,6 +141,22 @@ pub fn mesh_input(v: &Bound<'_, PyAny>, f: &Bound<'_, PyAny>) -> PyResult<Input>
 
 /// [`mesh_input`] with errors prefixed by `place` (`<surfaces[1]>`) instead of `<arrays>`.
 pub fn mesh_input_at(v: &Bound<'_, PyAny>, f: &Bound<'_, PyAny>, place: &str) -> PyResult<Input> {
+    mesh_input_with(v, f, place, false)
+}
+
+/// [`mesh_input`] as `atlas` reads a mesh: one refused only for a non-manifold vertex or
+/// edge is split there ([`conformap::pipeline::split_non_manifold_mesh`]; the report's
+/// `non_manifold` says where), every other defect keeps its error.
+pub fn mesh_input_splitting(v: &Bound<'_, PyAny>, f: &Bound<'_, PyAny>) -> PyResult<Input> {
+    mesh_input_with(v, f, MEMORY_PATH, true)
+}
+
+fn mesh_input_with(
+    v: &Bound<'_, PyAny>,
+    f: &Bound<'_, PyAny>,
+    place: &str,
+    split: bool,
+) -> PyResult<Input> {
     let at = |e: PyErr| {
         if place == MEMORY_PATH {
             e
@@ -152,14 +168,34 @@ pub fn mesh_input_at(v: &Bound<'_, PyAny>, f: &Bound<'_, PyAny>, place: &str) ->
     let positions: Vec<[f64; 3]> = flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
     let faces = faces(f, "F", positions.len()).map_err(at)?;
     let n = positions.len();
-    let mesh = v
+    let refuse = |e: conformap_mesh::MeshError| {
+        let hint = array_hint(&e).or_else(|| mesh_hint(&e).map(str::to_string));
+        to_py(Failure::BadInput(format!("{place}: {e}"), hint))
+    };
+    let (mesh, split_input) = v
         .py()
-        .detach(|| TriMesh::try_new(positions, faces))
-        .map_err(|e| {
-            let hint = array_hint(&e).or_else(|| mesh_hint(&e).map(str::to_string));
-            to_py(Failure::BadInput(format!("{place}: {e}"), hint))
-        })?;
-    Ok(memory_input(mesh, n))
+        .detach(|| {
+            use conformap_mesh::MeshError as M;
+            if !split {
+                return TriMesh::try_new(positions, faces).map(|m| (m, None));
+            }
+            // the arrays are kept for the split only when it may be needed
+            match TriMesh::try_new(positions.clone(), faces.clone()) {
+                Ok(mesh) => Ok((mesh, None)),
+                Err(e @ (M::NonManifoldVertex { .. } | M::NonManifoldEdge { .. })) => {
+                    match conformap::pipeline::split_non_manifold_mesh(&positions, &faces) {
+                        Some(Ok((mesh, s))) => Ok((mesh, Some(s))),
+                        Some(Err(e)) => Err(e),
+                        None => Err(e),
+                    }
+                }
+                Err(e) => Err(e),
+            }
+        })
+        .map_err(refuse)?;
+    let mut input = memory_input(mesh, n);
+    input.split = split_input;
+    Ok(input)
 }
 
 /// Hints for invalid arrays where the CLI's speak of files.

@@ -4,7 +4,7 @@ use conformap::pipeline::TexCoords;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
-use crate::arrays::{faces_array, mesh_input, to_array};
+use crate::arrays::{faces_array, mesh_input_splitting, to_array};
 use crate::errors::bad_input;
 use crate::keywords;
 use crate::maps::{report_dict, run};
@@ -48,7 +48,7 @@ pub fn atlas<'py>(
         strict,
     )?;
     let max_memory = options::max_memory(max_memory)?;
-    let input = mesh_input(V, F)?;
+    let input = mesh_input_splitting(V, F)?;
     let (solved, report) = run(py, &job, &input, max_memory, strict)?;
     let TexCoords::PerCorner(c) = &solved.uv else {
         return Err(bad_input("atlas: a per-corner layout was expected"));

@@ -83,7 +83,7 @@ def test_atlas_seamless_matches_cli(tmp_path):
         q = c["angle_deg"] / 90.0
         assert abs(q - round(q)) < 1e-9
     assert uv.min() >= 0.0 and uv.max() <= 1.0
-    with pytest.raises(conformap.ConformapError, match="--seamless"):
+    with pytest.raises(conformap.ConformapError, match="seamless takes cones"):
         conformap.atlas(V, F, cones="auto", seamless=True)
 
 
@@ -110,3 +110,26 @@ def test_atlas_cones_given_auto_and_unpacked():
     assert kept["atlas"]["packing"] == "none"
     assert uv.max() > 1.0
     assert kept["atlas"]["overlap"]["covered_twice"] == 0
+
+
+def test_atlas_splits_a_non_manifold_vertex_of_arrays():
+    # two hexagonal fans sharing their centre (one vertex, two fans: non-manifold): atlas
+    # splits it as the CLI does, every other function keeps refusing the arrays
+    ring = [(np.cos(t), np.sin(t)) for t in np.linspace(0.0, 2.0 * np.pi, 7)[:-1]]
+    V = [(0.0, 0.0, 0.0)]
+    V += [(x, y, 0.3) for x, y in ring]
+    V += [(x, 0.3, y) for x, y in ring]
+    V = np.array(V)
+    F = np.array([(0, 1 + k, 1 + (k + 1) % 6) for k in range(6)] + [(0, 7 + k, 7 + (k + 1) % 6) for k in range(6)])
+    uv, F_uv, report = conformap.atlas(V, F)
+    split = report["atlas"]["non_manifold"]
+    assert split["vertices_split"] == 1 and split["vertices_added"] == 1
+    assert split["split_vertices"] == [0]
+    assert F_uv.shape == F.shape
+    assert uv.min() >= 0.0 and uv.max() <= 1.0
+    p = uv[F_uv]
+    signed = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0])
+    assert np.all(signed > 0)
+    assert report["atlas"]["overlap"]["covered_twice"] == 0
+    with pytest.raises(conformap.ConformapError, match="non-manifold"):
+        conformap.flatten(V, F)

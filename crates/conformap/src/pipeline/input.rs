@@ -83,28 +83,49 @@ pub fn read_input_splitting(path: &Path) -> Result<Input, Failure> {
         return Err(refusal(path, e));
     }
     let raw = conformap_io::read_raw_mesh(path)?;
-    let mut seen = std::collections::HashSet::with_capacity(raw.faces.len());
-    let duplicates = raw.faces.iter().any(|t| {
-        let mut k = *t;
-        k.sort_unstable();
-        !seen.insert(k)
-    });
-    if duplicates {
+    let Some(split) = split_non_manifold_mesh(&raw.positions, &raw.faces) else {
         return Err(refusal(path, e));
-    }
-    let split = conformap_atlas::split_non_manifold(&raw.positions, &raw.faces);
-    let mesh = TriMesh::try_new(split.positions, split.faces)
-        .map_err(|e| Failure::from(raw.invalid_mesh(e)))?;
+    };
+    let (mesh, split) = split.map_err(|e| Failure::from(raw.invalid_mesh(e)))?;
     Ok(Input {
         mesh,
         source: raw.source,
         repairs: None,
         path: path.to_path_buf(),
-        split: Some(SplitInput {
-            report: split.report,
-            vertex_to_input: split.vertex_to_input,
-        }),
+        split: Some(split),
     })
+}
+
+/// A mesh refused for a non-manifold vertex or edge, split there
+/// ([`conformap_atlas::split_non_manifold`]) and validated again; `None` when it has
+/// duplicate faces (splitting would make each copy a component of its own: the refusal
+/// stands). `atlas`'s reading of a file ([`read_input_splitting`]) and of arrays.
+///
+/// # Errors
+/// The validation's error on the split mesh.
+pub fn split_non_manifold_mesh(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+) -> Option<Result<(TriMesh, SplitInput), conformap_mesh::MeshError>> {
+    let mut seen = std::collections::HashSet::with_capacity(faces.len());
+    let duplicates = faces.iter().any(|t| {
+        let mut k = *t;
+        k.sort_unstable();
+        !seen.insert(k)
+    });
+    if duplicates {
+        return None;
+    }
+    let split = conformap_atlas::split_non_manifold(positions, faces);
+    Some(TriMesh::try_new(split.positions, split.faces).map(|mesh| {
+        (
+            mesh,
+            SplitInput {
+                report: split.report,
+                vertex_to_input: split.vertex_to_input,
+            },
+        )
+    }))
 }
 
 /// The input of a mesh read from `path` as it is (no repair, no split).

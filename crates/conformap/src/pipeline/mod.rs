@@ -24,7 +24,9 @@ use std::time::Instant;
 
 use conformap_mesh::TriMesh;
 
-pub use input::{read_input, read_input_splitting, repair_input, Input, SplitInput};
+pub use input::{
+    read_input, read_input_splitting, repair_input, split_non_manifold_mesh, Input, SplitInput,
+};
 pub use memory::MemoryCheck;
 pub use options::{parse_size, InputOptions, OutputOptions};
 pub use outputs::{check_command_outputs, check_outputs, Staged};
