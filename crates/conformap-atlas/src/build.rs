@@ -420,28 +420,13 @@ fn component_mesh(
 /// give them different texture coordinates.
 fn seam_log_ratios(uv: &[[f64; 2]], charts: &[ComponentChart]) -> (f64, f64) {
     let (mut worst, mut sum, mut count) = (0.0f64, 0.0, 0usize);
-    for c in charts {
-        let opp = c.mesh.opposite_halfedges();
-        for (h, &o) in opp.iter().enumerate() {
-            if o == conformap_mesh::NO_HALFEDGE || (o as usize) < h {
-                continue;
-            }
-            let corner = |h: usize, step: usize| {
-                let (f, k) = (h / 3, (h % 3 + step) % 3);
-                uv[3 * c.faces[f] as usize + k]
-            };
-            let (a, b) = (corner(h, 0), corner(h, 1));
-            let (p, q) = (corner(o as usize, 1), corner(o as usize, 0));
-            if a == p && b == q {
-                continue;
-            }
-            let l1 = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
-            let l2 = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
-            let r = (l1 / l2).ln().abs();
-            worst = worst.max(r);
-            sum += r;
-            count += 1;
-        }
+    for [a, b, p, q] in crate::component::seam_edges(uv, charts) {
+        let l1 = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+        let l2 = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+        let r = (l1 / l2).ln().abs();
+        worst = worst.max(r);
+        sum += r;
+        count += 1;
     }
     (sum / count.max(1) as f64, worst)
 }

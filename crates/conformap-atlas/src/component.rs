@@ -24,3 +24,29 @@ pub struct ComponentChart {
     /// and was split.
     pub pieces: Vec<Piece>,
 }
+
+/// The seam edges of the atlas `uv` (`uv[3 f + k]`, input faces) of `charts`: input edges
+/// whose two faces give them different texture coordinates, as `[a, b, p, q]` with `a → b`
+/// on one side and `p → q` the same edge, same direction, on the other.
+pub(crate) fn seam_edges<'a>(
+    uv: &'a [[f64; 2]],
+    charts: &'a [ComponentChart],
+) -> impl Iterator<Item = [[f64; 2]; 4]> + 'a {
+    charts.iter().flat_map(move |c| {
+        let opp = c.mesh.opposite_halfedges();
+        let corner = move |h: usize, step: usize| {
+            let (f, k) = (h / 3, (h % 3 + step) % 3);
+            uv[3 * c.faces[f] as usize + k]
+        };
+        (0..opp.len()).filter_map(move |h| {
+            let o = opp[h];
+            if o == conformap_mesh::NO_HALFEDGE || (o as usize) < h {
+                return None;
+            }
+            // h runs a → b, o runs b → a: p, q are a, b on the other side
+            let (a, b) = (corner(h, 0), corner(h, 1));
+            let (p, q) = (corner(o as usize, 1), corner(o as usize, 0));
+            (a != p || b != q).then_some([a, b, p, q])
+        })
+    })
+}

@@ -505,45 +505,29 @@ pub fn seam_rigidity(uv: &[[f64; 2]], charts: &[ComponentChart]) -> SeamRigidity
         rotation_error_max: 0.0,
         rigid_residual_max: 0.0,
     };
-    for c in charts {
-        let opp = c.mesh.opposite_halfedges();
-        for (h, &o) in opp.iter().enumerate() {
-            if o == conformap_mesh::NO_HALFEDGE || (o as usize) < h {
-                continue;
-            }
-            let corner = |h: usize, step: usize| {
-                let (f, k) = (h / 3, (h % 3 + step) % 3);
-                let p = uv[3 * c.faces[f] as usize + k];
-                Complex64::new(p[0], p[1])
-            };
-            // h runs a → b, o runs b → a: p, q are a, b on the other side
-            let (a, b) = (corner(h, 0), corner(h, 1));
-            let (p, q) = (corner(o as usize, 1), corner(o as usize, 0));
-            if a == p && b == q {
-                continue;
-            }
-            out.seam_edges += 1;
-            let (d1, d2) = (b - a, q - p);
-            let longer = d1.norm().max(d2.norm());
-            if longer == 0.0 {
-                continue; // both sides a point: rigid whatever the turn
-            }
-            if d1.norm() == 0.0 || d2.norm() == 0.0 {
-                // one side collapsed: no rotation takes one to the other
-                out.rotation_error_max = out.rotation_error_max.max(FRAC_PI_2 / 2.0);
-                out.rigid_residual_max = out.rigid_residual_max.max(1.0);
-                continue;
-            }
-            let angle = (d1 / d2).arg();
-            let turns = (angle / FRAC_PI_2).round();
-            let error = (angle - turns * FRAC_PI_2).abs();
-            let r = Complex64::from_polar(1.0, turns * FRAC_PI_2);
-            // the quarter turn exactly: no rounding of sin and cos
-            let r = Complex64::new(r.re.round(), r.im.round());
-            let residual = (d1 - r * d2).norm() / longer;
-            out.rotation_error_max = out.rotation_error_max.max(error);
-            out.rigid_residual_max = out.rigid_residual_max.max(residual);
+    for [a, b, p, q] in crate::component::seam_edges(uv, charts) {
+        let [a, b, p, q] = [a, b, p, q].map(|z| Complex64::new(z[0], z[1]));
+        out.seam_edges += 1;
+        let (d1, d2) = (b - a, q - p);
+        let longer = d1.norm().max(d2.norm());
+        if longer == 0.0 {
+            continue; // both sides a point: rigid whatever the turn
         }
+        if d1.norm() == 0.0 || d2.norm() == 0.0 {
+            // one side collapsed: no rotation takes one to the other
+            out.rotation_error_max = out.rotation_error_max.max(FRAC_PI_2 / 2.0);
+            out.rigid_residual_max = out.rigid_residual_max.max(1.0);
+            continue;
+        }
+        let angle = (d1 / d2).arg();
+        let turns = (angle / FRAC_PI_2).round();
+        let error = (angle - turns * FRAC_PI_2).abs();
+        let r = Complex64::from_polar(1.0, turns * FRAC_PI_2);
+        // the quarter turn exactly: no rounding of sin and cos
+        let r = Complex64::new(r.re.round(), r.im.round());
+        let residual = (d1 - r * d2).norm() / longer;
+        out.rotation_error_max = out.rotation_error_max.max(error);
+        out.rigid_residual_max = out.rigid_residual_max.max(residual);
     }
     out
 }
