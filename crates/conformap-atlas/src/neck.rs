@@ -10,7 +10,8 @@
 use num_complex::Complex64;
 use rayon::prelude::*;
 
-use crate::chart::split::{shortest_path, sides, sub_piece, PathGraph};
+use crate::chart::piece::sub_piece;
+use crate::chart::split::{shortest_path, sides, PathGraph};
 use crate::chart::Piece;
 use crate::component::ComponentChart;
 use crate::error::AtlasError;

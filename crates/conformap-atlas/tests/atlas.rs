@@ -145,3 +145,19 @@ fn armadillo_auto_cones_leave_no_flipped_face() {
     assert_eq!(r.overlap.covered_twice, 0, "{r:?}");
     assert!(r.area_spread <= 1.0, "{r:?}");
 }
+
+/// eightsim (173 vertices) at 32 cones is cut into strips one face wide whose boundary
+/// crosses itself where no interior path can separate the crossing: such a piece is grown
+/// again into regions without overlap (1,602 texels covered twice before, 0 now), every
+/// face keeping its layout.
+#[test]
+fn pieces_no_path_can_split_are_regrown_without_overlap() {
+    let (p, f) = soup(&["eightsim"]);
+    let atlas = build_atlas(&p, &f, &AtlasOptions::default().with_cones(32)).expect("atlas");
+    let r = &atlas.report;
+    assert_eq!(r.cones, 32);
+    assert_eq!(r.flipped, 0, "{r:?}");
+    assert_eq!(r.overlap.covered_twice, 0, "{r:?}");
+    assert!(r.seam_log_ratio_max < 1e-10, "{r:?}");
+    assert_eq!(atlas.uv.len(), 3 * f.len());
+}

@@ -5,8 +5,9 @@
 use conformap_mesh::{fill_holes, TriMesh};
 use serde::Serialize;
 
+use super::piece::Piece;
 use super::repair::detach_folded;
-use super::split::{split_overlapping, Piece};
+use super::split::split_overlapping;
 use super::{chart_closed_by, chart_quality, drop_fans, Chart};
 use crate::cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;

@@ -10,7 +10,9 @@
 
 mod cut;
 pub(crate) mod given;
+pub(crate) mod piece;
 mod quality;
+mod regions;
 mod repair;
 pub mod seamless;
 pub(crate) mod split;
@@ -24,10 +26,11 @@ use num_complex::Complex64;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
+pub use piece::Piece;
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
-pub use split::{split_overlapping, Piece, MAX_SPLIT_DEPTH};
+pub use split::{split_overlapping, MAX_SPLIT_DEPTH};
 
 /// A closed surface cut into one disk and flattened.
 #[derive(Debug, Clone)]

@@ -15,7 +15,7 @@ use std::collections::VecDeque;
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
 
-use super::split::{sub_piece, Piece};
+use super::piece::{sub_piece, Piece};
 use crate::error::AtlasError;
 
 /// Ring counts tried around the folds, smallest first, while each leaves fewer folded

@@ -5,31 +5,17 @@
 //! its lengths exactly, the new ones too. Repeated until no piece overlaps itself.
 
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 use conformap_mesh::{TriMesh, NO_HALFEDGE};
 use conformap_metrics::boundary_crossings;
-use num_complex::Complex64;
 
+use super::piece::{sub_piece, Piece};
 use crate::error::AtlasError;
 
-/// A flat piece of a component: its faces (component-local ids), its own mesh (a disk),
-/// the component vertex of each of its vertices, and its layout.
-#[derive(Debug, Clone)]
-pub struct Piece {
-    /// Component face of each face.
-    pub faces: Vec<u32>,
-    /// The piece as a mesh.
-    pub mesh: TriMesh,
-    /// Component vertex of each vertex.
-    pub original: Vec<u32>,
-    /// Layout, one point per vertex.
-    pub uv: Vec<Complex64>,
-}
-
 /// How deep splitting goes: at most 2^10 pieces from one chart (armadillo's folded-then-
-/// unfolded chart needed more than 6 levels). A chart still overlapping then is returned
-/// as it is (the report's overlap says so).
+/// unfolded chart needed more than 6 levels). A piece still overlapping then is grown
+/// again into regions without overlap ([`super::regions`]).
 pub const MAX_SPLIT_DEPTH: usize = 10;
 
 /// Splits `piece` until no part of it overlaps itself.
@@ -39,8 +25,11 @@ pub const MAX_SPLIT_DEPTH: usize = 10;
 pub fn split_overlapping(piece: Piece, depth: usize) -> Result<Vec<Piece>, AtlasError> {
     let loops = piece.mesh.boundary_loops().to_vec();
     let crossings = boundary_crossings(&piece.uv, &loops, 32);
-    if crossings.is_empty() || depth >= MAX_SPLIT_DEPTH || loops.len() != 1 {
+    if crossings.is_empty() {
         return Ok(vec![piece]);
+    }
+    if depth >= MAX_SPLIT_DEPTH || loops.len() != 1 {
+        return super::regions::regrow(&piece);
     }
     // the first crossing (and choice of its edges' ends) that a path can separate
     let lp = &loops[0];
@@ -53,7 +42,8 @@ pub fn split_overlapping(piece: Piece, depth: usize) -> Result<Vec<Piece>, Atlas
             .find_map(|(a, b)| halves(&piece.mesh, a, b))
     });
     let Some(groups) = groups else {
-        return Ok(vec![piece]);
+        // no interior path separates a crossing (a strip one face wide)
+        return super::regions::regrow(&piece);
     };
     let mut out = Vec::new();
     for group in groups {
@@ -215,41 +205,6 @@ pub(crate) fn sides(mesh: &TriMesh, path: &[usize]) -> Option<Vec<Vec<u32>>> {
         groups.push(members);
     }
     (groups.len() >= 2).then_some(groups)
-}
-
-/// The layout of the new vertices: the parent's.
-fn local_uv(local: &HashMap<u32, u32>, parent: &[Complex64], n: usize) -> Vec<Complex64> {
-    let mut uv = vec![Complex64::new(0.0, 0.0); n];
-    for (&v, &l) in local {
-        uv[l as usize] = parent[v as usize];
-    }
-    uv
-}
-
-/// The piece of `piece` made of its faces `faces`, in the parent's layout.
-pub(crate) fn sub_piece(piece: &Piece, faces: &[u32]) -> Result<Piece, AtlasError> {
-    let mut local = HashMap::new();
-    let mut original = Vec::new();
-    let mut positions = Vec::new();
-    let mut tris = Vec::with_capacity(faces.len());
-    for &f in faces {
-        let t = piece.mesh.faces()[f as usize];
-        tris.push(t.map(|v| {
-            *local.entry(v).or_insert_with(|| {
-                original.push(piece.original[v as usize]);
-                positions.push(piece.mesh.positions()[v as usize]);
-                (original.len() - 1) as u32
-            })
-        }));
-    }
-    let mesh = TriMesh::try_new(positions, tris).map_err(|e| AtlasError::Mesh(e.to_string()))?;
-    let uv = local_uv(&local, &piece.uv, original.len());
-    Ok(Piece {
-        faces: faces.iter().map(|&f| piece.faces[f as usize]).collect(),
-        mesh,
-        original,
-        uv,
-    })
 }
 
 /// A total order on finite distances, for the heap.
