@@ -57,8 +57,10 @@ pub struct ConeOptions {
     pub local_rounds: usize,
     /// Local descent only on closed genus-0 surfaces with at most this many vertices (on
     /// genus ≥ 1 it slid cones next to the handle loops): a round costs one
-    /// Green's function solve per neighbour of every cone. Default: 20,000 (on the
-    /// 90k-face meshes it gains 1–2 % for 1.5–3 s).
+    /// Green's function solve per neighbour of every cone. Default: 5,000: spot (2,930
+    /// vertices) keeps it (0.835 → 0.825); on david_head (10,671) it gained 0.246 → 0.240
+    /// for 0.2 of the whole run's 0.6 s (and the neck cut it made possible: packing 0.59 →
+    /// 0.68, BFF's 0.41), on the 90k-face meshes 1–2 % for 1.5–3 s.
     pub local_max_vertices: usize,
 }
 
@@ -68,7 +70,7 @@ impl ConeOptions {
         move_rounds: 3,
         candidates: 4,
         local_rounds: 4,
-        local_max_vertices: 20_000,
+        local_max_vertices: 5_000,
     };
 
     /// With another number of move rounds (0: the greedy pass alone).
