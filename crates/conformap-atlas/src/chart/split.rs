@@ -15,7 +15,7 @@ use crate::error::AtlasError;
 
 /// How deep splitting goes: at most 2^10 pieces from one chart (armadillo's folded-then-
 /// unfolded chart needed more than 6 levels). A piece still overlapping then is grown
-/// again into regions without overlap ([`super::regions`]).
+/// again into regions without overlap (`chart/regions.rs`).
 pub const MAX_SPLIT_DEPTH: usize = 10;
 
 /// Splits `piece` until no part of it overlaps itself.
