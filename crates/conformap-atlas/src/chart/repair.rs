@@ -115,7 +115,25 @@ pub(crate) fn region(
     fixed: &[bool],
 ) -> Vec<u32> {
     let n = mesh.num_vertices();
-    let mut dist = vec![usize::MAX; n];
+    let dist = ring_distances(mesh, folded, rings, |v, next| {
+        next.extend(weights[v as usize].iter().map(|e| e.0));
+    });
+    // the outermost ring stays fixed: it is the convex-enough frame
+    (0..n as u32)
+        .filter(|&v| dist[v as usize] < rings && !fixed[v as usize])
+        .collect()
+}
+
+/// Edge steps from the vertices of the `folded` faces, breadth-first up to `rings` steps
+/// (`usize::MAX` beyond), the steps from a vertex those `neighbours` pushes (its one-ring;
+/// the seamless repair adds a seam vertex's twin).
+pub(crate) fn ring_distances(
+    mesh: &TriMesh,
+    folded: &[usize],
+    rings: usize,
+    neighbours: impl Fn(u32, &mut Vec<u32>),
+) -> Vec<usize> {
+    let mut dist = vec![usize::MAX; mesh.num_vertices()];
     let mut queue = VecDeque::new();
     for &f in folded {
         for v in mesh.faces()[f] {
@@ -125,22 +143,22 @@ pub(crate) fn region(
             }
         }
     }
+    let mut next = Vec::new();
     while let Some(v) = queue.pop_front() {
         let d = dist[v as usize];
         if d >= rings {
             continue;
         }
-        for &(w, _) in &weights[v as usize] {
+        next.clear();
+        neighbours(v, &mut next);
+        for &w in &next {
             if dist[w as usize] == usize::MAX {
                 dist[w as usize] = d + 1;
                 queue.push_back(w);
             }
         }
     }
-    // the outermost ring stays fixed: it is the convex-enough frame
-    (0..n as u32)
-        .filter(|&v| dist[v as usize] < rings && !fixed[v as usize])
-        .collect()
+    dist
 }
 
 /// Floater's mean value weights `w_ij = (tan(α/2) + tan(β/2)) / |x_j − x_i|` (α, β the

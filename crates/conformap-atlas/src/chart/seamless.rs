@@ -383,32 +383,12 @@ pub fn unfold_across_seams(chart: &mut Chart) -> usize {
     for rings in super::REPAIR_RINGS {
         let bad = super::repair::folded_faces(cm, uv);
         // breadth-first over the one-rings, through to a seam vertex's twin
-        let mut dist = vec![usize::MAX; n];
-        let mut queue = VecDeque::new();
-        for &f in &bad {
-            for v in faces[f] {
-                if dist[v as usize] == usize::MAX {
-                    dist[v as usize] = 0;
-                    queue.push_back(v);
-                }
-            }
-        }
-        while let Some(v) = queue.pop_front() {
-            let d = dist[v as usize];
-            if d >= rings {
-                continue;
-            }
-            let mut next: Vec<u32> = weights[v as usize].iter().map(|e| e.0).collect();
+        let dist = super::repair::ring_distances(cm, &bad, rings, |v, next| {
+            next.extend(weights[v as usize].iter().map(|e| e.0));
             if let Some((w, _)) = twin[v as usize] {
                 next.push(w);
             }
-            for w in next {
-                if dist[w as usize] == usize::MAX {
-                    dist[w as usize] = d + 1;
-                    queue.push_back(w);
-                }
-            }
-        }
+        });
         // one of each twin pair moves (the lower index), its twin follows
         let free: Vec<u32> = (0..n as u32)
             .filter(|&v| dist[v as usize] < rings && !fixed[v as usize])
