@@ -129,6 +129,24 @@ pub struct AtlasReport {
     /// The largest residual of a seam edge after the nearest quarter-turn rigid map,
     /// relative to its length ([`crate::chart::seamless::SeamRigidity`]).
     pub seam_rigid_residual_max: f64,
+    /// Wall time of each stage, milliseconds.
+    pub timings_ms: AtlasTimings,
+}
+
+/// Wall time of each stage of an atlas, milliseconds (summed over the components).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+#[non_exhaustive]
+pub struct AtlasTimings {
+    /// The cone metrics' factorizations and the cone placements.
+    pub cones: f64,
+    /// The rest of the charting: cut graphs, cuts, flattenings, fold repairs.
+    pub charts: f64,
+    /// Charts that folded or overlapped themselves, detached and split.
+    pub splits: f64,
+    /// Neck cuts and the packing into `[0,1]²` (or the rows of `--pack none`).
+    pub packing: f64,
+    /// The report's measurements (the overlap raster, distortion, seams).
+    pub report: f64,
 }
 
 /// A cone of the atlas, for reports.
@@ -203,12 +221,15 @@ pub fn build_atlas_with_cones(
             why: "a seamless atlas takes a cone count or given cones (multiples of 90°)",
         });
     }
+    let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
+    let mut timings = AtlasTimings::default();
     let components = split_components(positions.len(), faces);
     let mut charts = Vec::with_capacity(components.len());
     let mut autos: Vec<AutoCones> = Vec::new();
     for (index, face_ids) in components.into_iter().enumerate() {
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
+        let start = std::time::Instant::now();
         let chart = match (given, options.max_area_spread) {
             _ if options.seamless => {
                 let local = given.map(|g| local_cones(g, &vertices));
@@ -228,6 +249,9 @@ pub fn build_atlas_with_cones(
             (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
         };
         let quality = chart_quality(&mesh, &chart.cut, &chart.uv);
+        timings.cones += chart.cones_ms;
+        timings.charts += ms(start) - chart.cones_ms;
+        let start = std::time::Instant::now();
         let whole = Piece {
             faces: (0..mesh.num_faces() as u32).collect(),
             mesh: chart.cut.mesh.clone(),
@@ -261,6 +285,7 @@ pub fn build_atlas_with_cones(
                 });
             }
         }
+        timings.splits += ms(start);
         charts.push(ComponentChart {
             faces: face_ids,
             vertices,
@@ -276,6 +301,7 @@ pub fn build_atlas_with_cones(
     let pack = options
         .pack
         .with_quarter_turns_only(options.pack.quarter_turns_only || options.seamless);
+    let start = std::time::Instant::now();
     let packing = if options.layout == Layout::Pack && options.scale == ChartScale::Uniform {
         crate::neck::cut_necks(&mut charts, &pack)?
     } else {
@@ -318,7 +344,11 @@ pub fn build_atlas_with_cones(
             }
         }
     }
+    timings.packing = ms(start);
+    let start = std::time::Instant::now();
     let mut report = report(positions, faces, &uv, &charts, &packing, options);
+    timings.report = ms(start);
+    report.timings_ms = timings;
     if options.seamless
         && !(report.seam_rotation_error_max <= SEAMLESS_TOLERANCE
             && report.seam_rigid_residual_max <= SEAMLESS_TOLERANCE)
@@ -514,6 +544,7 @@ fn report(
         seamless: options.seamless,
         seam_rotation_error_max: rigidity.rotation_error_max,
         seam_rigid_residual_max: rigidity.rigid_residual_max,
+        timings_ms: AtlasTimings::default(),
     }
 }
 

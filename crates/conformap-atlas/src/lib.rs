@@ -66,7 +66,7 @@ mod summary;
 
 pub use build::{
     build_atlas, build_atlas_with_cones, split_components, Atlas, AtlasOptions, AtlasReport,
-    AutoConesReport, ConeEntry, SEAMLESS_TOLERANCE,
+    AtlasTimings, AutoConesReport, ConeEntry, SEAMLESS_TOLERANCE,
 };
 pub use chart::given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
 pub use chart::seamless::{chart_seamless, quantize_cones, seam_rigidity, SeamRigidity};

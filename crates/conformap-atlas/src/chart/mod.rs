@@ -48,6 +48,9 @@ pub struct Chart {
     pub closure_residual: f64,
     /// Faces the flattening folded, before they were unfolded ([`unfold`]).
     pub folded_before_repair: usize,
+    /// Wall time of the cone metric and the cone placement, milliseconds (0 where no
+    /// cones were placed).
+    pub cones_ms: f64,
 }
 
 /// Charts one connected component of any topology:
@@ -162,6 +165,7 @@ pub(crate) fn chart_closed_by(
             return flatten_cut(mesh, edges, on_cut, ConeSet::none(mesh.num_vertices()), 0.0);
         }
     };
+    let start = std::time::Instant::now();
     let metric = if !handles {
         ConeMetric::new(mesh)?
     } else {
@@ -175,8 +179,10 @@ pub(crate) fn chart_closed_by(
         ConeMetric::with_pinned(mesh, &pinned)?
     };
     let set = place(&metric);
+    let cones_ms = start.elapsed().as_secs_f64() * 1e3;
     let handle_length = cut_length(mesh, edges, &on_cut);
-    flatten_cut(mesh, edges, on_cut, set, handle_length)
+    let chart = flatten_cut(mesh, edges, on_cut, set, handle_length)?;
+    Ok(Chart { cones_ms, ..chart })
 }
 
 /// Joins the cones of `set` to the cut `on_cut` (handle loops of length `handle_length`,
@@ -230,6 +236,7 @@ fn flatten_cut(
         cones: set,
         cut_length: handle_length + added,
         closure_residual: flat.closure_residual,
+        cones_ms: 0.0,
     })
 }
 

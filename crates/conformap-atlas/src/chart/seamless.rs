@@ -244,6 +244,7 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
         cut_length: handle_length + added,
         closure_residual: 0.0,
         folded_before_repair,
+        cones_ms: 0.0,
     })
 }
 
