@@ -111,3 +111,42 @@ fn too_few_cones_on_a_closed_surface_become_three() {
     assert_seamless(&atlas, f.len());
     assert_eq!(atlas.report.cones, 3, "{:?}", atlas.report);
 }
+
+/// eightsim (genus 2, 350 faces): the discrete holomorphic 1-form folded a face beside each
+/// of its two zeros (4 folded faces before the repair; the atlas mirrored the 2 left:
+/// seams 0.71 rad off a quarter turn, refused). Each zero's disk is laid out again as a
+/// branch point (`branch_zero`): the integrated form folds nothing, the zero's copies turn
+/// 720° in all, and the seamless atlas keeps every guarantee.
+#[test]
+fn genus_two_zeros_become_branch_points() {
+    let (p, f) = soup(&["eightsim"]);
+    let mesh = conformap_mesh::TriMesh::try_new(p.clone(), f.clone()).expect("mesh");
+    let chart = conformap_atlas::chart::seamless::chart_one_form(&mesh).expect("chart");
+    assert_eq!(chart.folded_before_repair, 0);
+    assert_eq!(chart.cones.cones.len(), 2);
+    let cm = &chart.cut.mesh;
+    for c in &chart.cones.cones {
+        assert!((c.defect + std::f64::consts::TAU).abs() < 1e-12, "{c:?}");
+        // the angles at the zero's copies in the layout, all faces counter-clockwise
+        let mut total = 0.0;
+        for t in cm.faces() {
+            for k in 0..3 {
+                if chart.cut.original[t[k] as usize] == c.vertex {
+                    let z = t.map(|v| chart.uv[v as usize]);
+                    let angle = ((z[(k + 2) % 3] - z[k]) / (z[(k + 1) % 3] - z[k])).arg();
+                    assert!(angle > 0.0, "{angle}");
+                    total += angle;
+                }
+            }
+        }
+        assert!(
+            (total.to_degrees() - 720.0).abs() < 1e-6,
+            "{}",
+            total.to_degrees()
+        );
+    }
+    let options = AtlasOptions::default().with_seamless(true);
+    let atlas = build_atlas(&p, &f, &options).expect("atlas");
+    assert_seamless(&atlas, f.len());
+    assert!(atlas.report.cone_list.iter().all(|c| c.angle_deg == 720.0));
+}

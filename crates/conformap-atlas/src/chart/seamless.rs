@@ -11,7 +11,10 @@
 //! - **Genus ≥ 1**: the cone metric cannot close the handle loops with quarter-turn
 //!   holonomy, so the chart is the layout of a holomorphic 1-form (`conformap-global`'s
 //!   most uniform one): every seam a pure translation (a period), the form's zeros cones of
-//!   angle `2π(1 + m)` (multiples of π/2, here of 2π), the cut run through them.
+//!   angle `2π(1 + m)` (multiples of π/2, here of 2π), the cut run through them. The
+//!   discrete form folds a face beside each zero (its cone angle spread over the fold);
+//!   each zero's disk is laid out again as a true branch point first (`branch_zero`),
+//!   an exact change of the form that keeps its periods.
 //!
 //! What the atlas does afterwards keeps this: [`super::unfold`] moves interior vertices
 //! only, splits and neck cuts keep both pieces' coordinates (the new seam is the
@@ -197,8 +200,9 @@ pub fn chart_seamless(
 
 /// The chart of closed surface `mesh` of genus ≥ 1 laid out by its most uniform
 /// holomorphic 1-form (`conformap-global`, default options; the layout's area is the
-/// surface's): cut along its homology loops and from every zero of the form to them,
-/// the form integrated over the cut disk, folds inside unfolded. Every seam is a pure
+/// surface's): every zero made a branch point (`branch_zero`), the surface cut along its
+/// homology loops and from every zero to them, the form integrated over the cut disk,
+/// folds inside unfolded. Every seam is a pure
 /// translation; the zeros are the cones (defect `−2π m` for a zero of multiplicity `m`).
 ///
 /// # Errors
@@ -213,21 +217,26 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
         ));
     }
     let edges = &map.edges;
-    let mut on_cut = map.cut.on_cut.clone();
-    let handle_length = super::cut_length(mesh, edges, &on_cut);
+    let mut form = map.form.clone();
+    // each zero made a branch point, at its vertex or one beside it
     let zeros: Vec<Cone> = map
         .input_zeros()
-        .filter(|z| z.multiplicity != 0)
-        .map(|z| Cone {
-            vertex: z.vertex as u32,
-            defect: -TAU * z.multiplicity as f64,
+        .filter(|z| z.multiplicity > 0)
+        .map(|z| {
+            let (v, m) = (z.vertex as u32, z.multiplicity as u32);
+            Cone {
+                vertex: branch_zero(mesh, edges, &mut form, v, m).unwrap_or(v),
+                defect: -TAU * f64::from(m),
+            }
         })
         .collect();
+    let mut on_cut = map.cut.on_cut.clone();
+    let handle_length = super::cut_length(mesh, edges, &on_cut);
     let graph = cut::Graph::new(mesh, edges);
     let targets: Vec<u32> = zeros.iter().map(|c| c.vertex).collect();
     let added = cut::join_to_cut(mesh, edges, &graph, &mut on_cut, &targets, &[]);
     let cut = cut_mesh_along(mesh, edges, on_cut).map_err(|e| AtlasError::Mesh(e.to_string()))?;
-    let mut uv = integrate(&cut, edges, &map.form);
+    let mut uv = integrate(&cut, edges, &form);
     let folded_before_repair = super::repair::folded_faces(&cut.mesh, &uv).len();
     unfold(&cut.mesh, &mut uv);
     let n = mesh.num_vertices();
@@ -246,6 +255,302 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
         folded_before_repair,
         cones_ms: 0.0,
     })
+}
+
+/// Ring counts of the disk re-laid around a zero of the 1-form ([`branch_zero`]),
+/// smallest first: the first whose boundary winds `m + 1` times around the zero and whose
+/// re-layout turns no face over is kept. Up to 8 rings (the discrete zeros found on eight,
+/// fertility and eightsim are clusters of one or two vertices with a folded face beside
+/// them; 2 rings already enclose them); a zero no ring count fixes keeps its folds and is
+/// refused by the atlas (`AtlasError::SeamlessFolds`).
+const BRANCH_RINGS: [usize; 5] = [2, 3, 4, 6, 8];
+
+/// Gauss–Seidel sweeps of the mean value layout of a zero's disk, at most; it stops once no
+/// vertex moves by more than 1e-14 of the disk's size (the disk has a few hundred vertices
+/// at most: convergence, not speed, decides).
+const BRANCH_SWEEPS: usize = 20_000;
+
+/// Makes the zero of multiplicity `m` of the discrete holomorphic 1-form `form` at vertex
+/// `zero` a true branch point: the layout of a discrete form folds faces beside its zeros
+/// (the cone angle `2π(m + 1)` is spread over a folded face and the vertices around it, each
+/// of which turns once), which no later step can unfold without moving seams. The disk of
+/// the first of [`BRANCH_RINGS`] rings around the zero whose boundary, integrated from the
+/// zero, winds `m + 1` times around it is laid out again: its boundary lifted by `ζ =
+/// w^{1/(m+1)}` (one turn), the inside by mean value weights with the zero pinned at `ζ =
+/// 0`, then mapped back by `w = ζ^{m+1}`: every face counter-clockwise, the zero's ring
+/// turning `m + 1` times. The form's values on the edges inside the disk become the
+/// differences of the new positions: the change is exact (the boundary is kept), so the
+/// form stays closed with the same periods and every seam stays a translation.
+///
+/// The branch point is the zero's vertex when more than `2(m + 1)` faces surround it (each
+/// angle at it must stay below `π/(m+1)` before the power), else the first neighbour, most
+/// faces first, where the re-layout succeeds. Returns the vertex made the branch point, or
+/// `None` (form unchanged) when no vertex and ring count give a fold-free disk.
+fn branch_zero(
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    form: &mut [Complex64],
+    zero: u32,
+    m: u32,
+) -> Option<u32> {
+    let n = mesh.num_vertices();
+    let faces = mesh.faces();
+    let mut vertex_faces: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for (f, t) in faces.iter().enumerate() {
+        t.iter()
+            .for_each(|&v| vertex_faces[v as usize].push(f as u32));
+    }
+    // a branch point of m + 1 turns needs more than 2(m + 1) faces around it (each angle
+    // below π/(m+1) before the power): the zero's vertex if it has them, else its
+    // neighbours with the most faces (the discrete zero is a cluster: any vertex beside it
+    // serves)
+    let enough = |v: u32| vertex_faces[v as usize].len() > 2 * (m as usize + 1);
+    let mut candidates: Vec<u32> = vertex_faces[zero as usize]
+        .iter()
+        .flat_map(|&f| faces[f as usize])
+        .filter(|&v| v != zero && enough(v))
+        .collect();
+    candidates.sort_unstable_by_key(|&v| (std::cmp::Reverse(vertex_faces[v as usize].len()), v));
+    candidates.dedup();
+    if enough(zero) {
+        candidates.insert(0, zero);
+    }
+    candidates
+        .into_iter()
+        .find(|&v| branch_at(mesh, edges, form, &vertex_faces, v, m).is_some())
+}
+
+/// [`branch_zero`] at vertex `zero` (`vertex_faces`: the faces around each vertex):
+/// the ring count used, or `None` (form unchanged).
+fn branch_at(
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    form: &mut [Complex64],
+    vertex_faces: &[Vec<u32>],
+    zero: u32,
+    m: u32,
+) -> Option<usize> {
+    let n = mesh.num_vertices();
+    let faces = mesh.faces();
+    // ring distance from the zero, up to the largest ring count
+    let far = *BRANCH_RINGS.last()?;
+    let mut dist = vec![usize::MAX; n];
+    dist[zero as usize] = 0;
+    let mut queue = VecDeque::from([zero]);
+    while let Some(v) = queue.pop_front() {
+        let d = dist[v as usize];
+        if d >= far {
+            continue;
+        }
+        for &f in &vertex_faces[v as usize] {
+            for &w in &faces[f as usize] {
+                if dist[w as usize] == usize::MAX {
+                    dist[w as usize] = d + 1;
+                    queue.push_back(w);
+                }
+            }
+        }
+    }
+    let power = f64::from(m + 1);
+    for rings in BRANCH_RINGS {
+        // the disk: faces with a vertex closer than `rings`
+        let patch: Vec<usize> = (0..faces.len())
+            .filter(|&f| faces[f].iter().any(|&v| dist[v as usize] < rings))
+            .collect();
+        let mut local = vec![u32::MAX; n];
+        let mut global = Vec::new();
+        let tris: Vec<[u32; 3]> = patch
+            .iter()
+            .map(|&f| {
+                faces[f].map(|v| {
+                    if local[v as usize] == u32::MAX {
+                        local[v as usize] = global.len() as u32;
+                        global.push(v);
+                    }
+                    local[v as usize]
+                })
+            })
+            .collect();
+        let positions = global
+            .iter()
+            .map(|&v| mesh.positions()[v as usize])
+            .collect();
+        let Ok(disk) = TriMesh::try_new(positions, tris) else {
+            continue;
+        };
+        let loops = disk.boundary_loops();
+        let boundary_edges: usize = loops.iter().map(Vec::len).sum();
+        let edge_count = (3 * disk.num_faces() + boundary_edges) / 2;
+        if loops.len() != 1 || disk.num_vertices() + disk.num_faces() != edge_count + 1 {
+            continue; // not a disk
+        }
+        // the form integrated over the disk from the zero, breadth-first
+        let nl = global.len();
+        let mut w = vec![Complex64::new(0.0, 0.0); nl];
+        let mut seen = vec![false; nl];
+        let z = local[zero as usize] as usize;
+        seen[z] = true;
+        let mut queue = VecDeque::from([z]);
+        let mut out: Vec<Vec<(usize, usize)>> = vec![Vec::new(); nl];
+        for &f in &patch {
+            for k in 0..3 {
+                let a = local[faces[f][k] as usize] as usize;
+                let b = local[faces[f][(k + 1) % 3] as usize] as usize;
+                out[a].push((b, 3 * f + k));
+                out[b].push((a, 3 * f + k));
+            }
+        }
+        while let Some(a) = queue.pop_front() {
+            for &(b, h) in &out[a] {
+                if !seen[b] {
+                    seen[b] = true;
+                    let value = edges.sign(h) * form[edges.edge_of[h] as usize];
+                    // h runs from its face's k-th vertex to the next
+                    let from = local[mesh.halfedge_vertices(h).0 as usize] as usize;
+                    w[b] = w[a] + if from == a { value } else { -value };
+                    queue.push_back(b);
+                }
+            }
+        }
+        let boundary = &loops[0];
+        if boundary.iter().any(|&v| w[v as usize].norm() == 0.0) {
+            continue;
+        }
+        // the boundary's winding around the zero
+        let turns: f64 = (0..boundary.len())
+            .map(|i| {
+                let (a, b) = (boundary[i], boundary[(i + 1) % boundary.len()]);
+                (w[b as usize] / w[a as usize]).arg()
+            })
+            .sum::<f64>()
+            / TAU;
+        if (turns.abs() - power).abs() > 1e-6 {
+            continue;
+        }
+        // the boundary lifted by the (m+1)-th root, continuously
+        let mut zeta = vec![Complex64::new(0.0, 0.0); nl];
+        let first = boundary[0] as usize;
+        zeta[first] = w[first].powf(1.0 / power);
+        for i in 1..boundary.len() {
+            let (a, b) = (boundary[i - 1] as usize, boundary[i] as usize);
+            zeta[b] = zeta[a] * (w[b] / w[a]).powf(1.0 / power);
+        }
+        let mut fixed = vec![false; nl];
+        boundary.iter().for_each(|&v| fixed[v as usize] = true);
+        fixed[z] = true;
+        let free: Vec<u32> = (0..nl as u32).filter(|&v| !fixed[v as usize]).collect();
+        let weights = super::repair::mean_value_weights(&disk);
+        relax_disk(&weights, &free, &mut zeta);
+        // the zero's fan: an angle of π/(m+1) or more at it turns its face over under the
+        // power; then the fan's neighbours are spread evenly around it (their distances
+        // kept) and the rest laid out again
+        let ring = fan(&disk, z as u32)?;
+        let d = ring.len();
+        let widest = (0..d)
+            .map(|j| (zeta[ring[(j + 1) % d] as usize] / zeta[ring[j] as usize]).arg())
+            .fold(f64::NEG_INFINITY, f64::max);
+        if widest >= FAN_ANGLE_LIMIT * std::f64::consts::PI / power {
+            let start = zeta[ring[0] as usize].arg();
+            let step = TAU / d as f64;
+            let shift = (0..d)
+                .map(|j| {
+                    let x = zeta[ring[j] as usize].arg() - start - step * j as f64;
+                    x - TAU * (x / TAU).round()
+                })
+                .sum::<f64>()
+                / d as f64;
+            for (j, &v) in ring.iter().enumerate() {
+                let r = zeta[v as usize].norm();
+                zeta[v as usize] = Complex64::from_polar(r, start + shift + step * j as f64);
+                fixed[v as usize] = true;
+            }
+            let free: Vec<u32> = free.into_iter().filter(|&v| !fixed[v as usize]).collect();
+            relax_disk(&weights, &free, &mut zeta);
+        }
+        let moved: Vec<u32> = (0..nl as u32)
+            .filter(|&v| v as usize != z && !boundary.contains(&v))
+            .collect();
+        let mut new_w = w.clone();
+        for &v in &moved {
+            new_w[v as usize] = zeta[v as usize].powf(power);
+        }
+        let mut inside = vec![false; nl];
+        moved.iter().for_each(|&v| inside[v as usize] = true);
+        let ccw = disk.faces().iter().all(|t| {
+            let p = t.map(|v| new_w[v as usize]);
+            let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+            e1.re * e2.im - e1.im * e2.re > 0.0
+        });
+        if !ccw {
+            continue;
+        }
+        // the form on every edge with an end inside the disk: the new differences
+        for &f in &patch {
+            for k in 0..3 {
+                let h = 3 * f + k;
+                let (a, b) = mesh.halfedge_vertices(h);
+                let (a, b) = (local[a as usize] as usize, local[b as usize] as usize);
+                if !inside[a] && !inside[b] && a != z && b != z {
+                    continue;
+                }
+                form[edges.edge_of[h] as usize] = edges.sign(h) * (new_w[b] - new_w[a]);
+            }
+        }
+        return Some(rings);
+    }
+    None
+}
+
+/// The widest angle allowed at a zero in the root plane of [`branch_zero`], as a fraction
+/// of `π/(m+1)` (where the power `ζ^{m+1}` would turn the face over): 0.9, a margin so
+/// that the faces beside it do not come out needle-thin; wider fans are spread evenly.
+const FAN_ANGLE_LIMIT: f64 = 0.9;
+
+/// The neighbours of interior vertex `v` of `disk` in counter-clockwise order, or `None`
+/// when its faces do not close a fan.
+fn fan(disk: &TriMesh, v: u32) -> Option<Vec<u32>> {
+    let mut next = std::collections::HashMap::new();
+    for t in disk.faces() {
+        if let Some(k) = t.iter().position(|&x| x == v) {
+            next.insert(t[(k + 1) % 3], t[(k + 2) % 3]);
+        }
+    }
+    let &first = next.keys().min()?;
+    let mut ring = vec![first];
+    let mut at = first;
+    loop {
+        at = *next.get(&at)?;
+        if at == first {
+            break;
+        }
+        if ring.len() > next.len() {
+            return None;
+        }
+        ring.push(at);
+    }
+    (ring.len() == next.len()).then_some(ring)
+}
+
+/// Gauss–Seidel on the mean value average over the `free` vertices of a zero's disk
+/// ([`BRANCH_SWEEPS`], to 1e-14 of the disk's size).
+fn relax_disk(weights: &[Vec<(u32, f64)>], free: &[u32], zeta: &mut [Complex64]) {
+    let size = zeta.iter().map(|z| z.norm_sqr()).fold(0.0f64, f64::max);
+    for _ in 0..BRANCH_SWEEPS {
+        let mut moved = 0.0f64;
+        for &v in free {
+            let (mut sum, mut total) = (Complex64::new(0.0, 0.0), 0.0);
+            for &(j, wt) in &weights[v as usize] {
+                sum += zeta[j as usize] * wt;
+                total += wt;
+            }
+            let x = sum / total;
+            moved = moved.max((x - zeta[v as usize]).norm_sqr());
+            zeta[v as usize] = x;
+        }
+        if moved <= 1e-28 * size {
+            break;
+        }
+    }
 }
 
 /// `form` (one value per edge of `edges`, which number the input's edges) integrated over
