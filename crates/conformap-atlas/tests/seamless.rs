@@ -144,6 +144,14 @@ fn genus_two_zeros_become_branch_points() {
             "{}",
             total.to_degrees()
         );
+        // slits: at least m + 2 = 3 cut edges at each simple zero, so 3 copies
+        let copies = chart
+            .cut
+            .original
+            .iter()
+            .filter(|&&o| o == c.vertex)
+            .count();
+        assert!(copies >= 3, "{copies}");
     }
     let options = AtlasOptions::default().with_seamless(true);
     let atlas = build_atlas(&p, &f, &options).expect("atlas");

@@ -235,6 +235,7 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
     let graph = cut::Graph::new(mesh, edges);
     let targets: Vec<u32> = zeros.iter().map(|c| c.vertex).collect();
     let added = cut::join_to_cut(mesh, edges, &graph, &mut on_cut, &targets, &[]);
+    let added = added + slit_zeros(mesh, edges, &form, &mut on_cut, &zeros);
     let cut = cut_mesh_along(mesh, edges, on_cut).map_err(|e| AtlasError::Mesh(e.to_string()))?;
     let mut uv = integrate(&cut, edges, &form);
     let folded_before_repair = super::repair::folded_faces(&cut.mesh, &uv).len();
@@ -255,6 +256,116 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
         folded_before_repair,
         cones_ms: 0.0,
     })
+}
+
+/// Gives every zero of multiplicity `m` (a cone of `2π(m + 1)`, a branch point of `form`)
+/// at least `m + 2` cut edges, and more while one of its copies in the cut disk spans a
+/// full turn or more, so that each copy's neighbourhood lies flat without covering itself
+/// (a zero at the end of a single cut path had all its `2π(m + 1)` in one copy, two sheets
+/// the overlap splits then cut into slivers): dangling slits of one edge from the zero to a
+/// neighbour not touching the cut (a slit never closes a cycle: the cut still opens the
+/// surface to one disk), each in the direction farthest, by layout angle around the zero,
+/// from the cut edges already there. The two sides of a slit integrate to the same
+/// positions (the form is closed around its tip): its seam is the identity. A copy whose
+/// neighbours all touch the cut keeps its span (eightsim: one copy of 474°). Returns the
+/// 3D length added.
+fn slit_zeros(
+    mesh: &TriMesh,
+    edges: &EdgeIndex,
+    form: &[Complex64],
+    on_cut: &mut [bool],
+    zeros: &[Cone],
+) -> f64 {
+    let faces = mesh.faces();
+    let p = mesh.positions();
+    let n = mesh.num_vertices();
+    let mut touches = vec![false; n];
+    for (e, &c) in on_cut.iter().enumerate() {
+        if c {
+            let (a, b) = mesh.halfedge_vertices(edges.halfedge[e] as usize);
+            touches[a as usize] = true;
+            touches[b as usize] = true;
+        }
+    }
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut added = 0.0;
+    for c in zeros {
+        let z = c.vertex;
+        let m = (-c.defect / TAU).round() as usize;
+        // the fan around z: (neighbour, half-edge z → neighbour, 3D angle of the corner
+        // that follows it)
+        let mut next = std::collections::HashMap::new();
+        for (f, t) in faces.iter().enumerate() {
+            if let Some(k) = t.iter().position(|&x| x == z) {
+                let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+                // the corner's angle in the layout: between the form's values on z → a
+                // and z → b (the half-edge b → z is the face's third)
+                let h = 3 * f + k;
+                let back = 3 * f + (k + 2) % 3;
+                let to_a = edges.sign(h) * form[edges.edge_of[h] as usize];
+                let to_b = -edges.sign(back) * form[edges.edge_of[back] as usize];
+                let angle = (to_b / to_a).arg();
+                next.insert(a, (b, h, angle));
+            }
+        }
+        let Some(&first) = next.keys().min() else {
+            continue;
+        };
+        let mut ring = Vec::new(); // (neighbour, half-edge, angle position)
+        let (mut at, mut theta) = (first, 0.0);
+        while let Some(&(b, h, angle)) = next.get(&at) {
+            ring.push((at, h, theta));
+            theta += angle;
+            at = b;
+            if at == first || ring.len() > next.len() {
+                break;
+            }
+        }
+        let total = theta;
+        let on = |h: usize, on_cut: &[bool]| on_cut[edges.edge_of[h] as usize];
+        let mut dirs: Vec<f64> = ring
+            .iter()
+            .filter(|r| on(r.1, on_cut))
+            .map(|r| r.2)
+            .collect();
+        loop {
+            // the widest copy of the zero: the largest gap between consecutive cut edges
+            let mut sorted = dirs.clone();
+            sorted.sort_by(f64::total_cmp);
+            let widest = (0..sorted.len())
+                .map(|i| match sorted.get(i + 1) {
+                    Some(&next) => next - sorted[i],
+                    None => sorted[0] + total - sorted[i],
+                })
+                .fold(0.0f64, f64::max);
+            if dirs.len() >= m + 2 && widest < TAU * (1.0 - 1e-9) {
+                break;
+            }
+            let gap = |x: f64| {
+                dirs.iter()
+                    .map(|&d| {
+                        let g = (x - d).rem_euclid(total);
+                        g.min(total - g)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let best = ring
+                .iter()
+                .filter(|r| !on(r.1, on_cut) && !touches[r.0 as usize])
+                .max_by(|a, b| gap(a.2).total_cmp(&gap(b.2)));
+            let Some(&(x, h, d)) = best else { break };
+            on_cut[edges.edge_of[h] as usize] = true;
+            touches[x as usize] = true;
+            dirs.push(d);
+            added += dot(
+                sub(p[x as usize], p[z as usize]),
+                sub(p[x as usize], p[z as usize]),
+            )
+            .sqrt();
+        }
+    }
+    added
 }
 
 /// Ring counts of the disk re-laid around a zero of the 1-form ([`branch_zero`]),
