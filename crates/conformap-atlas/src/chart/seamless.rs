@@ -14,7 +14,8 @@
 //!   angle `2π(1 + m)` (multiples of π/2, here of 2π), the cut run through them. The
 //!   discrete form folds a face beside each zero (its cone angle spread over the fold);
 //!   each zero's disk is laid out again as a true branch point first (`branch_zero`),
-//!   an exact change of the form that keeps its periods.
+//!   an exact change of the form that keeps its periods; slits of one edge at each zero
+//!   (`slit_zeros`) keep every copy of it below a full turn.
 //!
 //! What the atlas does afterwards keeps this: [`super::unfold`] moves interior vertices
 //! only, splits and neck cuts keep both pieces' coordinates (the new seam is the
