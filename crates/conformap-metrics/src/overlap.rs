@@ -16,6 +16,7 @@
 //! texture in `[0,1]²` (an atlas).
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The texture resolution of the overlap numbers in reports: 1024 texels a side, as the
@@ -89,13 +90,42 @@ pub fn raster_overlap(
             (lo, n as f64 / side)
         }
     };
-    let mut count = vec![0u8; n * n];
-    for t in triangles {
-        let p = t.map(|q| [(q[0] - origin[0]) * scale, (q[1] - origin[1]) * scale]);
-        rasterize(p, n, &mut count);
+    let raster: Vec<[[f64; 2]; 3]> = triangles
+        .map(|t| t.map(|q| [(q[0] - origin[0]) * scale, (q[1] - origin[1]) * scale]))
+        .collect();
+    // bands of rows rasterized on all cores, each taking the triangles its rows meet
+    // (bucketed by their rows first: every triangle looked at by the bands it meets only)
+    let rows = n.div_ceil(BANDS).max(1);
+    let bands = n.div_ceil(rows);
+    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); bands];
+    for (k, t) in raster.iter().enumerate() {
+        let lo = t.iter().map(|q| q[1]).fold(f64::INFINITY, f64::min);
+        let hi = t.iter().map(|q| q[1]).fold(f64::NEG_INFINITY, f64::max);
+        if !(lo.is_finite() && hi.is_finite()) || hi < 0.0 || lo > n as f64 {
+            continue;
+        }
+        // a texel row j is taken only when its centre j + 0.5 lies in [lo, hi]
+        let first = (lo.max(0.0) as usize / rows).min(bands - 1);
+        let last = (hi.min(n as f64) as usize / rows).min(bands - 1);
+        for b in &mut buckets[first..=last] {
+            b.push(k as u32);
+        }
     }
-    let covered = count.iter().filter(|&&c| c > 0).count() as u64;
-    let covered_twice = count.iter().filter(|&&c| c > 1).count() as u64;
+    let (covered, covered_twice) = vec![0u8; n * n]
+        .par_chunks_mut(rows * n)
+        .zip(&buckets)
+        .enumerate()
+        .map(|(b, (band, bucket))| {
+            let from = b * rows;
+            let to = from + band.len() / n;
+            for &k in bucket {
+                rasterize_rows(raster[k as usize], n, from..to, band);
+            }
+            let once = band.iter().filter(|&&c| c > 0).count() as u64;
+            let twice = band.iter().filter(|&&c| c > 1).count() as u64;
+            (once, twice)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
     RasterOverlap {
         resolution: n,
         covered,
@@ -124,8 +154,20 @@ fn top_left(a: [f64; 2], b: [f64; 2]) -> bool {
     dy < 0.0 || (dy == 0.0 && dx < 0.0)
 }
 
+/// Row bands the raster is split into for the cores: 16 (1024 texels: 64 rows each; the
+/// bands' work evens out across two or more cores, the bucketing costs a pass over the
+/// triangles).
+const BANDS: usize = 16;
+
 /// Adds one to every texel whose centre lies in triangle `p` (raster coordinates).
-fn rasterize(mut p: [[f64; 2]; 3], n: usize, count: &mut [u8]) {
+#[cfg(test)]
+fn rasterize(p: [[f64; 2]; 3], n: usize, count: &mut [u8]) {
+    rasterize_rows(p, n, 0..n, count);
+}
+
+/// [`rasterize`] restricted to the texel rows `rows`, whose counters are `band` (row
+/// `rows.start` first).
+fn rasterize_rows(mut p: [[f64; 2]; 3], n: usize, rows: std::ops::Range<usize>, band: &mut [u8]) {
     let area = edge(p[0], p[1], p[2]);
     if !(area.abs() > 0.0) || !area.is_finite() {
         return;
@@ -138,7 +180,8 @@ fn rasterize(mut p: [[f64; 2]; 3], n: usize, count: &mut [u8]) {
     // texel i has its centre at i + 0.5
     let first = |x: f64| ((x - 0.5).ceil().max(0.0) as usize).min(n);
     let last = |x: f64| (((x - 0.5).floor() + 1.0).max(0.0) as usize).min(n);
-    let (i0, i1, j0, j1) = (first(lo(0)), last(hi(0)), first(lo(1)), last(hi(1)));
+    let (i0, i1) = (first(lo(0)), last(hi(0)));
+    let (j0, j1) = (first(lo(1)).max(rows.start), last(hi(1)).min(rows.end));
     let rules = [
         top_left(p[0], p[1]),
         top_left(p[1], p[2]),
@@ -178,7 +221,8 @@ fn rasterize(mut p: [[f64; 2]; 3], n: usize, count: &mut [u8]) {
                 e > 0.0 || (e == 0.0 && rules[k])
             })
         };
-        let row = &mut count[j * n..(j + 1) * n];
+        let r = j - rows.start;
+        let row = &mut band[r * n..(r + 1) * n];
         // texels well inside the span are taken without the test when the test is sure to
         // take both ends of their run: each edge function is linear along the row, so its
         // computed value exceeds its rounding bound at every texel between two where it
@@ -418,6 +462,42 @@ mod tests {
             differ += usize::from(a != b);
         }
         assert_eq!(differ, 0, "triangles rasterized differently");
+    }
+
+    #[test]
+    fn bands_count_what_one_pass_over_the_whole_raster_counts() {
+        // triangles across band borders, on texel centres, partly outside the square
+        let n = 100;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let tris: Vec<[[f64; 2]; 3]> = (0..400)
+            .map(|t| {
+                let c = [rnd() * 1.2 - 0.1, rnd() * 1.2 - 0.1];
+                let s = if t % 7 == 0 { 0.5 } else { 0.08 };
+                let mut p = [[0.0; 2]; 3];
+                for q in &mut p {
+                    *q = [c[0] + s * (rnd() - 0.5), c[1] + s * (rnd() - 0.5)];
+                    if t % 3 == 0 {
+                        *q = q.map(|x| ((x * n as f64).round() + 0.5) / n as f64);
+                    }
+                }
+                p
+            })
+            .collect();
+        let mut count = vec![0u8; n * n];
+        for t in &tris {
+            rasterize(t.map(|q| q.map(|x| x * n as f64)), n, &mut count);
+        }
+        let once = count.iter().filter(|&&c| c > 0).count() as u64;
+        let twice = count.iter().filter(|&&c| c > 1).count() as u64;
+        assert!(twice > 100 && once > 2000, "{once} {twice}");
+        let o = raster_overlap(tris.iter().copied(), n, RasterFrame::UnitSquare);
+        assert_eq!((o.covered, o.covered_twice), (once, twice));
     }
 
     /// A fan of `k` triangles around the origin covering the disk of radius 0.4 at 0.5.
