@@ -16,7 +16,7 @@ use crate::chart::Piece;
 use crate::component::ComponentChart;
 use crate::error::AtlasError;
 use crate::hull::min_square_rect;
-use crate::pack::{fits_at, pack_outlined, pack_with, PackOptions, Packing};
+use crate::pack::{fits_at, pack_outlined, trial_pack, PackOptions, Packing};
 
 /// Least relative growth of the packing efficiency for a neck cut to be kept: 3 % (a
 /// seam is a cost to whoever paints the texture; a cut that buys less is not worth it).
@@ -144,15 +144,14 @@ pub(crate) fn cut_necks(
                         .map(|x| at(lp[x % m]))
                         .chain(inner.iter().map(|&v| at(v)))
                         .collect();
-                    let (mut pts, mut lps) = outlines(charts);
+                    let (_, mut lps) = outlines(charts);
                     let slot = index_of(charts, c, k);
-                    pts.splice(slot..=slot, [first.clone(), second.clone()]);
                     lps.splice(slot..=slot, [vec![first], vec![second]]);
                     // one packing at the bar first: most cuts do not reach it
                     if !fits_at(&lps, first_bar, pack) {
                         return None;
                     }
-                    let trial = pack_with(&pts, &lps, pack, false).ok()?;
+                    let trial = trial_pack(&lps, first_bar, pack)?;
                     Some((trial, path))
                 })
                 .collect();

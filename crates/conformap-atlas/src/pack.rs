@@ -162,17 +162,6 @@ pub fn pack_outlined(
     outlines: &[Vec<Vec<[f64; 2]>>],
     options: &PackOptions,
 ) -> Result<Packing, AtlasError> {
-    pack_with(charts, outlines, options, true)
-}
-
-/// [`pack_outlined`]; with `refine` false, the profile packer stops at its coarse grid
-/// (a tentative packing: a neck cut is judged by it).
-pub(crate) fn pack_with(
-    charts: &[Vec<[f64; 2]>],
-    outlines: &[Vec<Vec<[f64; 2]>>],
-    options: &PackOptions,
-    refine: bool,
-) -> Result<Packing, AtlasError> {
     check(charts, options)?;
     if outlines.len() != charts.len() {
         return Err(AtlasError::InvalidOption {
@@ -218,7 +207,15 @@ pub(crate) fn pack_with(
     let ((s, spots, height), order, rects) = best.ok_or(too_many)?;
     let by_rects = placements(charts, rects, &order, &spots, s, height, options);
     Ok(
-        match by_outlines(outlines, &area_rects, &square_rects, s, options, refine) {
+        match by_outlines(
+            outlines,
+            &area_rects,
+            &square_rects,
+            s,
+            options,
+            true,
+            PROFILE_STEPS,
+        ) {
             Some(p) if p.scale > by_rects.scale => Packing {
                 efficiency: by_rects.efficiency * (p.scale / by_rects.scale).powi(2),
                 ..p
@@ -320,8 +317,38 @@ pub(crate) fn fits_at(outlines: &[Vec<Vec<[f64; 2]>>], scale: f64, options: &Pac
     })
 }
 
+/// Bisection steps of a neck trial's packing ([`trial_pack`]): 7, over the interval from a
+/// scale the charts are known to reach to the area bound (usually under half the
+/// rectangle packer's interval): the scale to a few tenths of a percent, well under the
+/// gain a neck cut must bring ([`crate::neck::NECK_GAIN`], 3 %).
+pub const TRIAL_STEPS: usize = 7;
+
+/// A neck trial's packing of `outlines`: the profile packer alone on its coarse grid,
+/// searched above `floor` (texture units per layout unit, a scale [`fits_at`] found the
+/// charts reach) in [`TRIAL_STEPS`] steps; `None` when it finds no higher scale. Its
+/// efficiency is not measured (0): a trial is compared by its scale, and the atlas packed
+/// again once its cuts are chosen.
+pub(crate) fn trial_pack(
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    floor: f64,
+    options: &PackOptions,
+) -> Option<Packing> {
+    let points: Vec<Vec<[f64; 2]>> = outlines.iter().map(|o| o.concat()).collect();
+    let (area_rects, square_rects) = options.rects(&points);
+    let n = options.resolution as f64;
+    by_outlines(
+        outlines,
+        &area_rects,
+        &square_rects,
+        floor * n,
+        options,
+        false,
+        TRIAL_STEPS,
+    )
+}
+
 /// The outlines packed by the profile packer at the largest scale it reaches above
-/// `floor` (the rectangle packer's), each chart tried in four quarter turns of its
+/// `floor` (the rectangle packer's), `steps` bisection steps in its first order, each chart tried in four quarter turns of its
 /// smallest-area rectangle and of its smallest square (one of each when `turn` is off),
 /// two orders (largest area first, widest first), first on the coarse grid, then, when
 /// `refine`, at one texel per column; `None` when it does not beat `floor`.
@@ -332,6 +359,7 @@ pub(crate) fn by_outlines(
     floor: f64,
     options: &PackOptions,
     refine: bool,
+    steps: usize,
 ) -> Option<Packing> {
     use crate::profile::pack;
     let n = options.resolution;
@@ -353,10 +381,7 @@ pub(crate) fn by_outlines(
     // (scale, order, places, height)
     let mut best: Option<(f64, &[usize], Vec<crate::profile::Place>, f64)> = None;
     // the second order searched above the first's scale, in half the steps
-    for (order, steps) in [
-        (&by_area[..], PROFILE_STEPS),
-        (&by_width[..], PROFILE_STEPS / 2),
-    ] {
+    for (order, steps) in [(&by_area[..], steps), (&by_width[..], steps / 2)] {
         let (mut lo, mut hi) = (best.as_ref().map_or(floor, |b| b.0), ceiling.max(floor));
         for _ in 0..steps {
             let mid = 0.5 * (lo + hi);
