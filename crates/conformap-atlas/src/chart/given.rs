@@ -9,7 +9,7 @@ use super::piece::Piece;
 use super::repair::detach_folded;
 use super::split::split_overlapping;
 use super::{chart_closed_by, chart_quality, drop_fans, Chart};
-use crate::cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
+use crate::cones::{greedy_count, place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
 /// The most cones `--cones auto` places on one component: 32. Each count is a placement
@@ -64,10 +64,15 @@ fn given_set(metric: &ConeMetric, cones: &[Cone]) -> ConeSet {
 }
 
 /// Charts `mesh` (as [`super::chart_component`]) with as few cones as give a cone metric
-/// of area spread at most `max_spread`: counts tried upwards (from 0 on a surface with
-/// boundary or handles, which then take up the curvature; from 3 on a closed genus-0
-/// surface, whose cones must carry `4π` at angles of at least π/2) up to
-/// [`MAX_AUTO_CONES`], each placed as [`place_cones`] does, all from one factorization.
+/// of area spread at most `max_spread` (counts from 0 on a surface with boundary or
+/// handles, which then take up the curvature; from 3 on a closed genus-0 surface, whose
+/// cones must carry `4π` at angles of at least π/2; up to [`MAX_AUTO_CONES`]), all from
+/// one factorization: the greedy pass alone finds a count that reaches the bound (its
+/// prefixes give every count at once), then full placements ([`place_cones`]) bisect the
+/// counts below it for the fewest within the bound (the spread of placed cones falls with
+/// their number on every mesh measured; should it rise somewhere, the bisection may keep
+/// a count above the fewest). Should no greedy prefix reach the bound, every count is
+/// placed in full, upwards.
 /// On a genus-0 surface with boundary, the cone-free free boundary comes first and is
 /// kept when its layout is within `max_spread`. The chosen count's layout is measured
 /// too: where its spread is still above `max_spread`, or a face stays flipped after the
@@ -156,6 +161,27 @@ fn chart_auto_from(
 ) -> Result<(Chart, AutoCones), AtlasError> {
     let chosen = std::cell::Cell::new(None);
     let place = |metric: &ConeMetric| {
+        // the greedy pass's count bounds the answer from above; full placements bisect
+        // the counts below it (the spread falls with the count)
+        if let Some(top) = greedy_count(metric, first.max(1), MAX_AUTO_CONES, max_spread) {
+            let set = place_cones(metric, top, options);
+            if set.area_spread <= max_spread {
+                // `best` within the bound at `hi` cones; every count up to `lo` missed it
+                // (or lies below `first`)
+                let (mut lo, mut hi, mut best) = (first as isize - 1, top as isize, set);
+                while hi - lo > 1 {
+                    let mid = (lo + hi) / 2;
+                    let trial = place_cones(metric, mid as usize, options);
+                    if trial.area_spread <= max_spread {
+                        (hi, best) = (mid, trial);
+                    } else {
+                        lo = mid;
+                    }
+                }
+                chosen.set(Some((best.cones.len(), best.area_spread, false)));
+                return best;
+            }
+        }
         let mut best: Option<ConeSet> = None;
         for count in first..=MAX_AUTO_CONES {
             let set = place_cones(metric, count, options);

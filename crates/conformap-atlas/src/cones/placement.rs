@@ -400,6 +400,42 @@ pub fn place_cones(metric: &ConeMetric, count: usize, options: &ConeOptions) -> 
     }
 }
 
+/// The fewest cones, from `first` to `last`, whose greedy pass alone (no moves: the
+/// prefixes of one greedy pass, since each cone is chosen from those before it) gives a
+/// set of angles within `max_spread`, for either way of ranking extremes (the two on the
+/// two cores); `None` when no count up to `last` does. [`place_cones`] at that count
+/// reaches `max_spread` too (its moves only lower the greedy set's spread): `--cones auto`
+/// looks below it with full placements, not above (`chart::given`).
+pub(crate) fn greedy_count(
+    metric: &ConeMetric,
+    first: usize,
+    last: usize,
+    max_spread: f64,
+) -> Option<usize> {
+    let run = |reference| {
+        let mut cols = Columns::new(metric);
+        let mut vertices: Vec<u32> = Vec::new();
+        while vertices.len() < last {
+            let u = guidance(&mut cols, &vertices);
+            let next = extremes(metric, &u, &vertices, 1, reference)
+                .first()
+                .copied()?;
+            vertices.push(next);
+            if vertices.len() >= first
+                && best_with(&mut cols, &vertices, true).is_some_and(|b| b.1 <= max_spread)
+            {
+                return Some(vertices.len());
+            }
+        }
+        None
+    };
+    let (a, b) = rayon::join(|| run(Reference::Mean), || run(Reference::Cones));
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
 /// One greedy pass and its moves.
 struct Search {
     vertices: Vec<u32>,
