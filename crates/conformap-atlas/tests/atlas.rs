@@ -130,7 +130,7 @@ fn armadillo_has_no_flipped_face_and_no_overlap() {
 /// whose layout is within the bound, 18 cones, left 1 face flipped after the atlas's
 /// repairs; the search goes on to a count that leaves none (19).
 #[test]
-#[ignore = "reads the 86k-face armadillo from ../shared/meshes; minutes in debug, 13 s in release"]
+#[ignore = "reads the 86k-face armadillo from ../shared/meshes; minutes in debug, 8 s in release"]
 fn armadillo_auto_cones_leave_no_flipped_face() {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),

@@ -121,9 +121,14 @@ pub fn raster_overlap(
             for &k in bucket {
                 rasterize_rows(raster[k as usize], n, from..to, band);
             }
-            let once = band.iter().filter(|&&c| c > 0).count() as u64;
-            let twice = band.iter().filter(|&&c| c > 1).count() as u64;
-            (once, twice)
+            // one pass, in row-sized sums (u32 counters the compiler vectorizes)
+            band.chunks(n.max(1))
+                .fold((0u64, 0u64), |(once, twice), row| {
+                    let (a, b) = row.iter().fold((0u32, 0u32), |(a, b), &c| {
+                        (a + u32::from(c > 0), b + u32::from(c > 1))
+                    });
+                    (once + u64::from(a), twice + u64::from(b))
+                })
         })
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
     RasterOverlap {
