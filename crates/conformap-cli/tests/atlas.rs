@@ -580,13 +580,13 @@ fn non_manifold_vertices_and_edges_are_split_by_atlas_only() {
     assert_eq!(copies, split);
 }
 
-#[test]
-fn seamless_spot_has_quarter_turn_seams_and_cones() {
-    let d = tmpdir("atlas-seamless");
-    let (out, rep) = (d.join("atlas.obj"), d.join("r.json"));
+/// `conformap atlas FIXTURE --seamless` into `dir`: its report (checked seamless, every
+/// seam within 1e-6 of a quarter-turn rigid map) and the written atlas's path.
+fn seamless_atlas(dir: &std::path::Path, mesh: &str) -> (serde_json::Value, std::path::PathBuf) {
+    let (out, rep) = (dir.join("atlas.obj"), dir.join("r.json"));
     conformap_ok(&[
         "atlas",
-        s(&fixture("spot.obj")),
+        s(&fixture(mesh)),
         "-o",
         s(&out),
         "--seamless",
@@ -599,6 +599,14 @@ fn seamless_spot_has_quarter_turn_seams_and_cones() {
     let number = |k: &str| a[k].as_f64().expect("number");
     assert!(number("seam_rotation_error_max") <= 1e-6, "{a}");
     assert!(number("seam_rigid_residual_max") <= 1e-6, "{a}");
+    (r, out)
+}
+
+#[test]
+fn seamless_spot_has_quarter_turn_seams_and_cones() {
+    let d = tmpdir("atlas-seamless");
+    let (r, out) = seamless_atlas(&d, "spot.obj");
+    let a = &r["atlas"];
     let cones = a["cone_list"].as_array().expect("cones");
     assert!(!cones.is_empty());
     for c in cones {
@@ -701,22 +709,8 @@ fn seamless_genus_two_has_quarter_turn_seams_and_branch_point_cones() {
     // turn, refused); each zero is now a branch point of the layout (chart/seamless.rs,
     // `branch_zero`): cones of 720°, every seam a translation or a quarter-turn rigid map
     let d = tmpdir("atlas-seamless-genus2");
-    let (out, rep) = (d.join("atlas.obj"), d.join("r.json"));
-    conformap_ok(&[
-        "atlas",
-        s(&fixture("eightsim.obj")),
-        "-o",
-        s(&out),
-        "--seamless",
-        "--report",
-        s(&rep),
-    ]);
-    let r = json(&rep);
+    let (r, out) = seamless_atlas(&d, "eightsim.obj");
     let a = &r["atlas"];
-    assert_eq!(a["seamless"], true, "{a}");
-    let number = |k: &str| a[k].as_f64().expect("number");
-    assert!(number("seam_rotation_error_max") <= 1e-6, "{a}");
-    assert!(number("seam_rigid_residual_max") <= 1e-6, "{a}");
     // 2g − 2 = 2 simple zeros of the form, cones of 720° (a multiple of 90°)
     let cones = a["cone_list"].as_array().expect("cones");
     assert_eq!(cones.len(), 2, "{a}");

@@ -432,18 +432,22 @@ mod tests {
         }
     }
 
+    /// Uniform numbers in [0, 1) from a xorshift generator seeded with `seed`.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     #[test]
     fn row_spans_take_exactly_the_texels_of_the_full_test() {
         // random triangles, slivers, triangles with vertices on texel centres and edges
         // through them (the tie rule), partly outside the raster
         let n = 48;
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = xorshift(0x9e37_79b9_7f4a_7c15);
         let mut differ = 0;
         for t in 0..3000 {
             let mut p = [[0.0; 2]; 3];
@@ -473,13 +477,7 @@ mod tests {
     fn bands_count_what_one_pass_over_the_whole_raster_counts() {
         // triangles across band borders, on texel centres, partly outside the square
         let n = 100;
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = xorshift(0x2545_f491_4f6c_dd1d);
         let tris: Vec<[[f64; 2]; 3]> = (0..400)
             .map(|t| {
                 let c = [rnd() * 1.2 - 0.1, rnd() * 1.2 - 0.1];
