@@ -10,7 +10,8 @@ use serde::Serialize;
 use crate::chart::given::{chart_auto, chart_given, AutoCones};
 use crate::chart::seamless::{chart_seamless, seam_rigidity};
 use crate::chart::{
-    chart_component, chart_quality, detach_folded, flipped_corner_faces, split_overlapping, Piece,
+    chart_component, chart_quality, detach_folded, flipped_corner_faces, merge_pieces,
+    split_overlapping, Piece,
 };
 use crate::component::ComponentChart;
 use crate::cones::{Cone, ConeOptions};
@@ -259,9 +260,11 @@ pub fn build_atlas_with_cones(
             uv: chart.uv.clone(),
         };
         let mut pieces = Vec::new();
-        for piece in detach_folded(whole)? {
+        for piece in detach_folded(whole.clone())? {
             pieces.extend(split_overlapping(piece, 0)?);
         }
+        // slivers the splits left merged back where that overlaps nothing
+        let pieces = merge_pieces(&whole, pieces)?;
         if options.seamless {
             // the repairs keep every piece's coordinates (rigid seams), so a fold they
             // cannot detach stays: refused rather than written

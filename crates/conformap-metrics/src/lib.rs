@@ -65,7 +65,8 @@ pub use face::BELTRAMI_ABS_CAP;
 pub use metrics::{corner_map_metrics, planar_map_metrics};
 pub use options::{MetricsOptions, OuterCircle};
 pub use overlap::{
-    boundary_crossings, raster_overlap, RasterFrame, RasterOverlap, OVERLAP_RESOLUTION,
+    boundary_crossings, raster_overlap, segments_meet, RasterFrame, RasterOverlap,
+    OVERLAP_RESOLUTION,
 };
 pub use per_face::{face_distortion, face_distortions, isometric_chart, FaceDistortion};
 pub use report::{Histogram, LoopCircle, MapMetrics};

@@ -346,9 +346,11 @@ fn minmax(a: usize, b: usize) -> (usize, usize) {
     (a.min(b), a.max(b))
 }
 
-/// Whether segments `p0 p1` and `q0 q1` share a point other than a vertex they share by
-/// index (consecutive boundary edges meet at their common vertex; that is no crossing).
-fn segments_meet(
+/// Whether segments `p0 p1` and `q0 q1` (their end vertices' indices `pv`, `qv`) share a
+/// point other than a vertex they share by index (consecutive boundary edges meet at their
+/// common vertex; that is no crossing, unless the two fold back along one line). Exact
+/// orientation tests on the given coordinates; touching counts as meeting.
+pub fn segments_meet(
     p0: Complex64,
     p1: Complex64,
     q0: Complex64,

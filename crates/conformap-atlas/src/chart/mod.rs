@@ -10,6 +10,7 @@
 
 mod cut;
 pub(crate) mod given;
+mod merge;
 pub(crate) mod piece;
 mod quality;
 mod regions;
@@ -26,6 +27,7 @@ use num_complex::Complex64;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
+pub(crate) use merge::merge_pieces;
 pub use piece::Piece;
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
