@@ -35,7 +35,6 @@ pub(crate) fn merge_pieces(whole: &Piece, pieces: Vec<Piece>) -> Result<Vec<Piec
     }
     let mesh = &whole.mesh;
     let tris = mesh.faces();
-    let opp = mesh.opposite_halfedges();
     // the whole's face of each component face (the whole lists them all, in order)
     let local: HashMap<u32, u32> = whole
         .faces
@@ -64,49 +63,19 @@ pub(crate) fn merge_pieces(whole: &Piece, pieces: Vec<Piece>) -> Result<Vec<Piec
         }
     }
     let limit = ((MERGE_SHARE * tris.len() as f64) as usize).max(16);
-    let opposite = |h: usize| -> usize {
-        let o = opp[h];
-        if o == NO_HALFEDGE {
-            usize::MAX
-        } else {
-            owner[o as usize / 3]
-        }
-    };
-    // each group's boundary half-edges (kept up to date as groups merge), and the faces
-    // round each vertex
+    let graph = Graph { whole };
+    // each group's boundary half-edges, kept up to date as groups merge
     let mut bnd: Vec<Vec<u32>> = vec![Vec::new(); n];
     for (f, &g) in owner.iter().enumerate() {
         if g == usize::MAX {
             continue;
         }
-        for k in 0..3 {
-            let h = 3 * f + k;
-            if opposite(h) != g {
+        for h in 3 * f..3 * f + 3 {
+            if graph.owner_across(&owner, h) != g {
                 bnd[g].push(h as u32);
             }
         }
     }
-    let mut ring_start = vec![0usize; mesh.num_vertices() + 1];
-    for t in tris {
-        t.iter().for_each(|&v| ring_start[v as usize + 1] += 1);
-    }
-    for v in 0..mesh.num_vertices() {
-        ring_start[v + 1] += ring_start[v];
-    }
-    let mut ring = vec![0u32; ring_start[mesh.num_vertices()]];
-    let mut fill = ring_start.clone();
-    for (f, t) in tris.iter().enumerate() {
-        for &v in t {
-            ring[fill[v as usize]] = f as u32;
-            fill[v as usize] += 1;
-        }
-    }
-    let graph = Graph {
-        whole,
-        ring_start: &ring_start,
-        ring: &ring,
-    };
-    let mut merged_any = false;
     loop {
         let mut order: Vec<usize> = (0..n)
             .filter(|&i| groups[i].as_ref().is_some_and(|g| g.len() <= limit))
@@ -151,15 +120,11 @@ pub(crate) fn merge_pieces(whole: &Piece, pieces: Vec<Piece>) -> Result<Vec<Piec
                 small.iter().for_each(|&f| owner[f as usize] = j);
                 groups[j].as_mut().expect("live").extend(small);
                 merged = true;
-                merged_any = true;
             }
         }
         if !merged {
             break;
         }
-    }
-    if !merged_any {
-        return Ok(pieces);
     }
     let mut out = Vec::with_capacity(n);
     for ((p, g), kept) in pieces.into_iter().zip(groups).zip(consistent) {
@@ -178,11 +143,9 @@ pub(crate) fn merge_pieces(whole: &Piece, pieces: Vec<Piece>) -> Result<Vec<Piec
     Ok(out)
 }
 
-/// The chart's mesh and layout, with the faces round each vertex.
+/// The chart's mesh and layout.
 struct Graph<'a> {
     whole: &'a Piece,
-    ring_start: &'a [usize],
-    ring: &'a [u32],
 }
 
 impl Graph<'_> {
@@ -225,14 +188,14 @@ impl Graph<'_> {
         if shared_edges == 0 {
             return false;
         }
+        // a vertex of `a` in a face of `b` lies on `b`'s boundary
         let verts: HashSet<u32> = a.iter().flat_map(|&f| tris[f as usize]).collect();
-        let shared_vertices = verts
+        let shared_vertices = bb
             .iter()
-            .filter(|&&v| {
-                let r = &self.ring[self.ring_start[v as usize]..self.ring_start[v as usize + 1]];
-                r.iter().any(|&f| owner[f as usize] == ib)
-            })
-            .count();
+            .flat_map(|&h| self.ends(h))
+            .filter(|v| verts.contains(v))
+            .collect::<HashSet<u32>>()
+            .len();
         if shared_vertices != shared_edges + 1 {
             return false;
         }
