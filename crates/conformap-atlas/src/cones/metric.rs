@@ -198,6 +198,19 @@ impl ConeMetric {
             .collect()
     }
 
+    /// `⟨r, face_log_scale(green(w))⟩` for every vertex `w` at once, from one solve:
+    /// the face log scale is linear in `u` and `L⁻¹` is symmetric, so the product is the
+    /// Green's solve of the corners' share of `r` (0 at the pinned vertices).
+    pub fn face_pullback(&self, r: &[f64]) -> Vec<f64> {
+        let mut b = vec![0.0; self.curvature.len()];
+        for (f, &x) in self.faces.iter().zip(r) {
+            for &v in f {
+                b[v as usize] += 2.0 * x / 3.0;
+            }
+        }
+        self.solve_full(&b)
+    }
+
     /// The area spread of the cone metric: the standard deviation over faces of
     /// [`Self::face_log_scale`], which the flattened layout reproduces (its
     /// `sd log(uv area share / 3D area share)`).
