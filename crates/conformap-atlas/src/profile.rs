@@ -11,8 +11,10 @@ use crate::hull::rotate;
 pub(crate) struct Turned {
     /// Rotation from the layout, radians counter-clockwise.
     pub angle: f64,
-    /// The outline's edges after the rotation, as segments.
-    segments: Vec<[[f64; 2]; 2]>,
+    /// The outline's points after the rotation, loop after loop.
+    points: Vec<[f64; 2]>,
+    /// Where each loop ends in `points` (each loop closed: its last point joins its first).
+    loop_ends: Vec<usize>,
     /// Lowest x after the rotation.
     min_x: f64,
     /// Width after the rotation.
@@ -22,23 +24,25 @@ pub(crate) struct Turned {
 impl Turned {
     /// `loops` (closed polylines of layout points) turned by `angle`.
     pub fn new(loops: &[Vec<[f64; 2]>], angle: f64) -> Self {
-        let mut segments = Vec::new();
+        let mut points = Vec::new();
+        let mut loop_ends = Vec::new();
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for lp in loops {
-            let pts: Vec<[f64; 2]> = lp.iter().map(|&p| rotate(p, angle)).collect();
-            for (k, &a) in pts.iter().enumerate() {
-                let b = pts[(k + 1) % pts.len()];
-                segments.push([a, b]);
+        for lp in loops.iter().filter(|lp| !lp.is_empty()) {
+            for &p in lp {
+                let a = rotate(p, angle);
+                points.push(a);
                 lo = lo.min(a[0]);
                 hi = hi.max(a[0]);
             }
+            loop_ends.push(points.len());
         }
         if !lo.is_finite() {
             (lo, hi) = (0.0, 0.0);
         }
         Self {
             angle,
-            segments,
+            points,
+            loop_ends,
             min_x: lo,
             width: hi - lo,
         }
@@ -64,31 +68,41 @@ impl Profile {
         // the chart's own extremes per unit column of x − min_x + half
         let mut lo = vec![f64::INFINITY; columns];
         let mut hi = vec![f64::NEG_INFINITY; columns];
+        // x ≥ 0 (every point lies right of min_x), so a cast takes the floor
         let x_of = |p: [f64; 2]| (p[0] - t.min_x) * scale + half;
-        for &[a, b] in &t.segments {
-            let (xa, ya, xb, yb) = (x_of(a), a[1] * scale, x_of(b), b[1] * scale);
-            let (x0, y0, x1, y1) = if xa <= xb {
-                (xa, ya, xb, yb)
-            } else {
-                (xb, yb, xa, ya)
-            };
-            // a segment's extremes over a column are at its ends there: its own ends and
-            // its crossings of the column's sides
-            let col = |x: f64| (x.floor().max(0.0) as usize).min(columns - 1);
-            let mut put = |k: usize, y: f64| {
-                lo[k] = lo[k].min(y);
-                hi[k] = hi[k].max(y);
-            };
-            put(col(x0), y0);
-            put(col(x1), y1);
-            if x1 > x0 {
-                let slope = (y1 - y0) / (x1 - x0);
-                for side in (x0.floor() as i64 + 1)..=(x1.floor() as i64) {
-                    let y = y0 + slope * (side as f64 - x0);
-                    let k = side.clamp(1, columns as i64 - 1) as usize;
-                    put(k - 1, y);
-                    put(k, y);
+        let col = |x: f64| (x as usize).min(columns - 1);
+        let mut put = |k: usize, y: f64| {
+            lo[k] = lo[k].min(y);
+            hi[k] = hi[k].max(y);
+        };
+        let mut from = 0;
+        for &to in &t.loop_ends {
+            let pts = &t.points[from..to];
+            from = to;
+            // a segment's extremes over a column are at its ends there: its own ends (each
+            // point put once, for both segments it ends) and its crossings of the columns'
+            // sides
+            let Some(&last) = pts.last() else { continue };
+            let (mut xa, mut ya) = (x_of(last), last[1] * scale);
+            for &b in pts {
+                let (xb, yb) = (x_of(b), b[1] * scale);
+                put(col(xb), yb);
+                let (x0, y0, x1, y1) = if xa <= xb {
+                    (xa, ya, xb, yb)
+                } else {
+                    (xb, yb, xa, ya)
+                };
+                let (f0, f1) = (x0 as i64, x1 as i64);
+                if f1 > f0 {
+                    let slope = (y1 - y0) / (x1 - x0);
+                    for side in (f0 + 1)..=f1 {
+                        let y = y0 + slope * (side as f64 - x0);
+                        let k = side.clamp(1, columns as i64 - 1) as usize;
+                        put(k - 1, y);
+                        put(k, y);
+                    }
                 }
+                (xa, ya) = (xb, yb);
             }
         }
         // grown by the margin: column c holds every chart point within `half` of it
