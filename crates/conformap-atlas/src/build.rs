@@ -478,7 +478,23 @@ fn report(
         Layout::Pack => RasterFrame::UnitSquare,
         Layout::Keep => RasterFrame::BoundingBox,
     };
-    let overlap = raster_overlap(tris.clone(), OVERLAP_RESOLUTION, frame);
+    // the raster (on all cores) beside the rest of the measurements (one core)
+    let (overlap, report) = rayon::join(
+        || raster_overlap(tris, OVERLAP_RESOLUTION, frame),
+        || measure(positions, faces, uv, charts, packing, options),
+    );
+    AtlasReport { overlap, ..report }
+}
+
+/// Every number of the report but the overlap (left at its default).
+fn measure(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    uv: &[[f64; 2]],
+    charts: &[ComponentChart],
+    packing: &Packing,
+    options: &AtlasOptions,
+) -> AtlasReport {
     // per face: 3D area and signed texture area (the metrics crate needs one validated
     // mesh; an atlas's input may be several)
     let corner: Vec<Complex64> = uv.iter().map(|p| Complex64::new(p[0], p[1])).collect();
@@ -522,7 +538,7 @@ fn report(
         angle_mean_deg,
         seam_log_ratio_mean: seams.0,
         seam_log_ratio_max: seams.1,
-        overlap,
+        overlap: RasterOverlap::default(),
         packing_efficiency: s2 / bounding_square(uv),
         scale: packing.scale,
         cone_list: charts
