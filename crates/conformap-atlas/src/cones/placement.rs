@@ -11,7 +11,8 @@
 //!    of the scale factor without it are tried in its place; a move is kept when it lowers
 //!    the spread. Rounds until none helps or [`ConeOptions::move_rounds`] is reached.
 //! 4. **Local descent** (small surfaces): each cone slides to the neighbour that lowers the
-//!    spread most, a few rounds.
+//!    spread most, a few rounds; only the [`SLIDE_TRIALS`] neighbours whose first-order
+//!    change of the spread is lowest are solved for.
 //!
 //! Steps 2–4 run twice, ranking extremes by their distance from the mean scale and from the
 //! cones' own scale (boundary first flattening's rule); the set with less spread is kept.
@@ -56,11 +57,12 @@ pub struct ConeOptions {
     /// lowers the spread most. Default: 4 (spot: 0.835 → 0.825, converged after 3).
     pub local_rounds: usize,
     /// Local descent only on closed genus-0 surfaces with at most this many vertices (on
-    /// genus ≥ 1 it slid cones next to the handle loops): a round costs one
-    /// Green's function solve per neighbour of every cone. Default: 5,000: spot (2,930
-    /// vertices) keeps it (0.835 → 0.825); on david_head (10,671) it gained 0.246 → 0.240
-    /// for 0.2 of the whole run's 0.6 s (and the neck cut it made possible: packing 0.59 →
-    /// 0.68, BFF's 0.41), on the 90k-face meshes 1–2 % for 1.5–3 s.
+    /// genus ≥ 1 it slid cones next to the handle loops): a round costs
+    /// [`SLIDE_TRIALS`] Green's function solves per cone and one more per cone moved.
+    /// Default: 5,000: spot (2,930 vertices) keeps it (0.835 → 0.825); on david_head
+    /// (10,671) it gains 0.246 → 0.240 and the neck cut that packs 0.59 → 0.68 (BFF's
+    /// 0.41) for about a quarter of the whole run's time, on the 90k-face meshes 1–2 % of
+    /// spread for seconds.
     pub local_max_vertices: usize,
 }
 
