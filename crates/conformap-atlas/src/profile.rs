@@ -19,6 +19,9 @@ pub(crate) struct Turned {
     min_x: f64,
     /// Width after the rotation.
     width: f64,
+    /// Lowest and highest y after the rotation.
+    min_y: f64,
+    max_y: f64,
 }
 
 impl Turned {
@@ -27,14 +30,20 @@ impl Turned {
         let mut points = Vec::new();
         let mut loop_ends = Vec::new();
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut min_y, mut max_y) = (f64::INFINITY, f64::NEG_INFINITY);
         for lp in loops.iter().filter(|lp| !lp.is_empty()) {
             for &p in lp {
                 let a = rotate(p, angle);
                 points.push(a);
                 lo = lo.min(a[0]);
                 hi = hi.max(a[0]);
+                min_y = min_y.min(a[1]);
+                max_y = max_y.max(a[1]);
             }
             loop_ends.push(points.len());
+        }
+        if !min_y.is_finite() {
+            (min_y, max_y) = (0.0, 0.0);
         }
         if !lo.is_finite() {
             (lo, hi) = (0.0, 0.0);
@@ -45,6 +54,8 @@ impl Turned {
             loop_ends,
             min_x: lo,
             width: hi - lo,
+            min_y,
+            max_y,
         }
     }
 }
@@ -127,6 +138,10 @@ impl Profile {
     }
 }
 
+/// Relative slack of the orientation pruning in [`pack`]: 1e-9 (rounding of the bound's
+/// terms is 1e-16 relative; an orientation within the slack is profiled as before).
+const PRUNE_SLACK: f64 = 1e-9;
+
 /// Where a chart went: texture texel = `scale · rotate(p, angle) + offset`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Place {
@@ -169,8 +184,17 @@ pub(crate) fn pack(
     for &k in order {
         // (top, rest height of the chart's origin, column, orientation, profile)
         let mut best: Option<(f64, f64, usize, usize, Profile)> = None;
+        let sky_min = sky.iter().copied().fold(f64::INFINITY, f64::min);
         for (turn, t) in charts[k].iter().enumerate() {
             if fixed.is_some_and(|f| f[k] != turn) {
+                continue;
+            }
+            // a chart comes to rest no lower than the lowest point of the skyline: an
+            // orientation whose top would end above the best so far even there is not
+            // profiled (the slack keeps rounding from ever skipping one that could win)
+            let height = (t.max_y * scale + half) - (t.min_y * scale - half);
+            let bound = best.as_ref().map_or(top, |b| b.0);
+            if sky_min + height > bound + PRUNE_SLACK * bound.abs().max(1.0) {
                 continue;
             }
             let p = Profile::new(t, scale, half);
