@@ -142,7 +142,8 @@ pub struct AtlasTimings {
     pub cones: f64,
     /// The rest of the charting: cut graphs, cuts, flattenings, fold repairs.
     pub charts: f64,
-    /// Charts that folded or overlapped themselves, detached and split.
+    /// Charts that folded or overlapped themselves, detached and split (each chart's
+    /// distortion is measured beside it, on the other core).
     pub splits: f64,
     /// Neck cuts and the packing into `[0,1]²` (or the rows of `--pack none`).
     pub packing: f64,
@@ -249,7 +250,6 @@ pub fn build_atlas_with_cones(
             }
             (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
         };
-        let quality = chart_quality(&mesh, &chart.cut, &chart.uv);
         timings.cones += chart.cones_ms;
         timings.charts += ms(start) - chart.cones_ms;
         let start = std::time::Instant::now();
@@ -259,12 +259,19 @@ pub fn build_atlas_with_cones(
             original: chart.cut.original.clone(),
             uv: chart.uv.clone(),
         };
-        let mut pieces = Vec::new();
-        for piece in detach_folded(whole.clone())? {
-            pieces.extend(split_overlapping(piece, 0)?);
-        }
-        // slivers the splits left merged back where that overlaps nothing
-        let pieces = merge_pieces(&whole, pieces)?;
+        // the chart's distortion (one core) beside its repairs (the other)
+        let (quality, pieces) = rayon::join(
+            || chart_quality(&mesh, &chart.cut, &chart.uv),
+            || -> Result<Vec<Piece>, AtlasError> {
+                let mut pieces = Vec::new();
+                for piece in detach_folded(whole.clone())? {
+                    pieces.extend(split_overlapping(piece, 0)?);
+                }
+                // slivers the splits left merged back where that overlaps nothing
+                merge_pieces(&whole, pieces)
+            },
+        );
+        let pieces = pieces?;
         if options.seamless {
             // the repairs keep every piece's coordinates (rigid seams), so a fold they
             // cannot detach stays: refused rather than written
