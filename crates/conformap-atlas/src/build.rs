@@ -232,7 +232,7 @@ pub fn build_atlas_with_cones(
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
         let start = std::time::Instant::now();
-        let chart = match (given, options.max_area_spread) {
+        let mut chart = match (given, options.max_area_spread) {
             _ if options.seamless => {
                 let local = given.map(|g| local_cones(g, &vertices));
                 chart_seamless(
@@ -250,6 +250,7 @@ pub fn build_atlas_with_cones(
             }
             (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
         };
+        scale_to_surface_area(&mesh, &mut chart);
         timings.cones += chart.cones_ms;
         timings.charts += ms(start) - chart.cones_ms;
         let start = std::time::Instant::now();
@@ -382,6 +383,38 @@ pub fn build_atlas_with_cones(
         packing,
         report,
     })
+}
+
+/// Scales the layout of `chart` (a chart of `mesh`) to the area of the surface. A closed
+/// component's cone metric is fixed at one pinned vertex (`u = 0` there), which leaves its
+/// layout as a whole `e^{2u}` times larger or smaller than the surface (spot's 8-cone
+/// layout: 14× the area per 3D area of a disk's free-boundary layout); brought to the
+/// surface's area, every component's layout is in 3D units on the whole, so one common
+/// packing scale is one texel density for all components (and `--pack none` keeps 3D
+/// units). A uniform scale: angles, seams and rigidity are unchanged.
+fn scale_to_surface_area(mesh: &TriMesh, chart: &mut crate::chart::Chart) {
+    let surface: f64 = mesh
+        .faces()
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| mesh.positions()[v as usize]);
+            triangle_area(p[0], p[1], p[2])
+        })
+        .sum();
+    let layout: f64 = chart
+        .cut
+        .mesh
+        .faces()
+        .iter()
+        .map(|t| {
+            let z = t.map(|v| chart.uv[v as usize]);
+            planar::triangle_signed_area(z[0], z[1], z[2]).abs()
+        })
+        .sum();
+    let factor = (surface / layout).sqrt();
+    if factor.is_finite() && factor > 0.0 {
+        chart.uv.iter_mut().for_each(|z| *z *= factor);
+    }
 }
 
 /// The cones of `given` (input vertices) on a component whose vertices are `vertices`

@@ -13,14 +13,16 @@ pub enum Layout {
     #[default]
     Pack,
     /// Kept in their own coordinates (not turned, not scaled: texture units are layout
-    /// units, about 3D units), only moved apart side by side ([`keep_in_rows`]).
+    /// units, each component's layout at its surface's area, so 3D units on the whole),
+    /// only moved apart side by side ([`keep_in_rows`]).
     Keep,
 }
 
 /// How large each chart is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ChartScale {
-    /// One texel density for the whole atlas: the charts' layout scales as flattened.
+    /// One texel density for the whole atlas: every component's layout brought to its
+    /// surface's area, all charts packed at one scale.
     #[default]
     Uniform,
     /// Every component's charts scaled together to the same texture area: a small

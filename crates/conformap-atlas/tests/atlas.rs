@@ -48,6 +48,28 @@ fn five_components_of_every_topology_share_the_square_without_overlap() {
         .charts
         .iter()
         .all(|c| c.scale == atlas.packing.scale));
+    // and every component given the same texture area per 3D area (before the layouts
+    // were brought to their surfaces' area the five differed 29-fold: spot 9× woody's,
+    // halftunnel 0.3×)
+    let density: Vec<f64> = atlas
+        .charts
+        .iter()
+        .map(|c| {
+            let (mut uv_area, mut area) = (0.0, 0.0);
+            for &face in &c.faces {
+                let q = |k: usize| atlas.uv[3 * face as usize + k];
+                let (a, b, d) = (q(0), q(1), q(2));
+                uv_area +=
+                    0.5 * ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0])).abs();
+                let t = f[face as usize].map(|v| p[v as usize]);
+                area += conformap_mesh::triangle_area(t[0], t[1], t[2]);
+            }
+            uv_area / area
+        })
+        .collect();
+    for d in &density {
+        assert!((d / density[0] - 1.0).abs() < 1e-9, "{density:?}");
+    }
 }
 
 /// A flat 4 × 1 strip is one chart that fills a third of its smallest square (5/√2 on the
