@@ -549,7 +549,8 @@ fn slide(
     current: &mut (Vec<f64>, f64),
 ) -> bool {
     let mut moved = false;
-    let mut slope = cols.pullback(vertices, &current.0);
+    // one solve per round: the ranking after a move in it uses the round's first residual
+    let slope = cols.pullback(vertices, &current.0);
     for i in 0..vertices.len() {
         let here = vertices[i];
         let k = current.0[i];
@@ -581,7 +582,6 @@ fn slide(
                 vertices[i] = w;
                 *current = found;
                 moved = true;
-                slope = cols.pullback(vertices, &current.0);
             }
             None => vertices[i] = here,
         }
