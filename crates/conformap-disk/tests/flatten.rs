@@ -503,3 +503,22 @@ fn faces_as_rectangles_fold_nothing() {
         }
     }
 }
+
+/// `measure` off skips the report's quality measures only: the same map, bit for bit, the
+/// flips and touches still counted, the metrics left at zero.
+#[test]
+fn unmeasured_flattening_is_the_same_map_without_metrics() {
+    let mesh = fixture_mesh("woody.obj");
+    let measured = flatten(&mesh, &opts(FlattenBoundary::Free)).expect("flattens");
+    let bare = flatten(&mesh, &opts(FlattenBoundary::Free).with_measure(false)).expect("flattens");
+    assert_eq!(measured.map, bare.map);
+    assert!(measured.report.metrics.image_area > 0.0);
+    assert_eq!(measured.report.metrics.measured_faces, mesh.num_faces());
+    assert_eq!(bare.report.metrics.image_area, 0.0);
+    assert_eq!(bare.report.metrics.measured_faces, 0);
+    assert_eq!(
+        bare.report.boundary_touches,
+        measured.report.boundary_touches
+    );
+    assert_eq!(bare.report.overlap_free, measured.report.overlap_free);
+}

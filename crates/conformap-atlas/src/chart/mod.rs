@@ -226,7 +226,9 @@ fn flatten_cut(
         .with_boundary(boundary)
         .with_equal_lengths(seam_pairs(mesh, &cut))
         // `unfold` below repairs a fold locally; the fallback operators cost a factorization
-        .with_fold_fallback(false);
+        .with_fold_fallback(false)
+        // the chart's quality is measured once the folds are repaired (`chart_quality`)
+        .with_measure(false);
     let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
     let mut uv = flat.map;
     let folded_before_repair = repair::folded_faces(&cut.mesh, &uv).len();

@@ -76,7 +76,8 @@ pub struct FlattenReport {
     /// Which Laplacian the solves used, and why.
     pub laplacian: String,
     /// Quality of the map (E_C, angle and area distortion, flipped faces…), judged on the
-    /// input mesh by `conformap-metrics`; `area_distortion_log.sd` is the area spread.
+    /// input mesh by `conformap-metrics`; `area_distortion_log.sd` is the area spread
+    /// (all zero when [`crate::flatten::FlattenOptions::measure`] is off).
     #[serde(skip_serializing)]
     pub metrics: MapMetrics,
     /// Step timings.
