@@ -2,7 +2,7 @@
 //! report and the time of every stage:
 //!
 //! ```text
-//! cargo run --release -p conformap-morph --example faces -- [--hard] [--no-creases] [--lambda X] [--frames N] [--support R] [--step S] \
+//! cargo run --release -p conformap-morph --example faces -- [--hard] [--no-creases] [--no-refine] [--lambda X] [--frames N] [--support R] [--step S] \
 //!     S1.obj S1.landmarks.txt S2.obj S2.landmarks.txt [...]
 //! ```
 //!
@@ -22,6 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         match flag.as_str() {
             "--hard" => options = options.with_hard_landmarks(),
             "--no-creases" => options = options.with_crease_matching(false),
+            "--no-refine" => options = options.with_key_frame_refinement(false),
             "--lambda" => options = options.with_lambda(args.remove(k).parse()?),
             "--frames" => frames = args.remove(k).parse()?,
             "--support" => options.register.warp.support = args.remove(k).parse()?,

@@ -6,11 +6,19 @@
 //!
 //! ```text
 //! cargo build --release --workspace --examples
-//! target/release/examples/nearest_flips [--hard] [--no-creases] [--list] \
+//! target/release/examples/nearest_flips [--hard] [--no-creases] [--no-refine] [--list] \
 //!     [S1.obj S1.landmarks.txt S2.obj S2.landmarks.txt ...]
 //! ```
 //!
 //! `--list`: also every counted face of the morph (index, vertices, centroid on S1).
+//! `--no-refine`: without the key frames' refinement (which moves vertices of faces that
+//! this very count flags: with it, the count is no longer independent of the morph, and
+//! the distance to the exact correspondence below is the independent check).
+//!
+//! With an exact correspondence it also prints how far the morph's key-frame vertices
+//! lie from their exact counterparts, in mean edge lengths of the key surface: the mean,
+//! the largest, and the sum over all covered vertices (a refinement that moves a few
+//! vertices changes the sum by their moves towards or away from the exact places).
 //!
 //! Without surfaces it reads `../shared/morph/ict_{neutral,wry,pout}`.
 //!
@@ -43,6 +51,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         match args.remove(k).as_str() {
             "--hard" => options = options.with_hard_landmarks(),
             "--no-creases" => options = options.with_crease_matching(false),
+            "--no-refine" => options = options.with_key_frame_refinement(false),
             "--list" => list = true,
             other => return Err(format!("unknown flag {other}").into()),
         }
@@ -68,6 +77,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         names.push(pair[0].rsplit('/').next().unwrap_or(&pair[0]).to_string());
     }
     let m = morph(&surfaces, &options)?;
+    // the same morph without the refinement, to compare the vertices it moved
+    let unrefined = if options.refine_key_frames {
+        Some(morph(
+            &surfaces,
+            &options.clone().with_key_frame_refinement(false),
+        )?)
+    } else {
+        None
+    };
     let s1 = &surfaces[0];
     for (k, sk) in surfaces.iter().enumerate().skip(1) {
         let near = NearestTriangle::new(&sk.mesh);
@@ -89,6 +107,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
              the morph's own count {} ({})",
             names[k], r.key_frame_flipped_faces, r.key_frame_largest_flip_patch
         );
+        if let Some(rf) = &r.refine {
+            print!(
+                "; refined: {} -> {} disagreeing, {} moves (largest {:.3} mean edges), {:.1} ms",
+                rf.disagreeing_before, rf.disagreeing_after, rf.moves, rf.largest_move_edges, rf.ms
+            );
+        }
         match exact(s1, sk) {
             Some(map) => {
                 // S1's faces whose three vertices have a counterpart
@@ -111,6 +135,41 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     e.len(),
                     faces.len()
                 );
+                let edge = mean_edge(&sk.mesh);
+                let off: Vec<f64> = map
+                    .iter()
+                    .enumerate()
+                    .filter(|&(_, &j)| j != u32::MAX)
+                    .map(|(v, _)| distance(m.keys()[k][v], frame[v]) / edge)
+                    .collect();
+                let sum: f64 = off.iter().sum();
+                println!(
+                    "  off the exact correspondence (mean edges of {}): mean {:.4}, max {:.3}, sum {:.2} over {} vertices",
+                    names[k],
+                    sum / off.len().max(1) as f64,
+                    off.iter().copied().fold(0.0, f64::max),
+                    sum,
+                    off.len()
+                );
+                if let Some(u) = &unrefined {
+                    // the vertices the refinement moved: nearer to or farther from their
+                    // exact places than without it
+                    let (mut nearer, mut farther, mut change) = (0, 0, 0.0);
+                    for (v, &j) in map.iter().enumerate() {
+                        let (a, b) = (u.keys()[k][v], m.keys()[k][v]);
+                        if j == u32::MAX || a == b {
+                            continue;
+                        }
+                        let (da, db) = (distance(a, frame[v]) / edge, distance(b, frame[v]) / edge);
+                        nearer += usize::from(db < da);
+                        farther += usize::from(db > da);
+                        change += db - da;
+                    }
+                    println!(
+                        "  against the morph without the refinement: {} vertices differ, {nearer} nearer to their exact places, {farther} farther, sum {change:+.3} mean edges",
+                        nearer + farther
+                    );
+                }
             }
             None => println!("; no exact correspondence"),
         }
@@ -140,6 +199,21 @@ fn count(
         .collect();
     let patch = largest_patch(faces, &flipped);
     (flipped, patch)
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The mean edge length of a mesh (every face's three edges).
+fn mean_edge(mesh: &TriMesh) -> f64 {
+    let p = mesh.positions();
+    let total: f64 = mesh
+        .faces()
+        .iter()
+        .flat_map(|f| (0..3).map(move |e| distance(p[f[e] as usize], p[f[(e + 1) % 3] as usize])))
+        .sum();
+    total / (3 * mesh.faces().len()).max(1) as f64
 }
 
 fn centroid(p: &[[f64; 3]], f: &[u32; 3]) -> [f64; 3] {

@@ -22,6 +22,8 @@
 //!   [`MorphReport`] per key surface; [`Morph::frame`] gives the positions at any time.
 //! - [`creases`]: closed crease loops (e.g. the rims of zipped hole fills) and how S1's
 //!   are carried onto every key surface's.
+//! - [`refine`]: the key frames' local refinement on their key surfaces: vertices of faces
+//!   that point against the key triangle nearest to them slide within the key surface.
 //! - `quality`: checks of frames (flips against the key surface, creases, fold patches,
 //!   degenerate faces, steps, point–triangle distance).
 //!
@@ -48,6 +50,7 @@ mod locate;
 mod morph;
 mod normalize;
 pub mod quality;
+pub mod refine;
 mod register;
 
 #[doc(hidden)]

@@ -12,6 +12,7 @@ use super::rims::{carry_rims, Carried, KeyDisk, Rims};
 use super::{ms, MorphOptions, Prepared, Surface};
 use crate::creases::RimCut;
 use crate::quality::{flipped_against_key, flipped_at_vertices, largest_patch};
+use crate::refine::{refine_key_frame, KeyFrame, NearestTriangle, RefineSummary};
 use crate::{
     register_disk, LandmarkMode, Location, MorphError, Registration, TriangleGrid, WarpOptions,
 };
@@ -28,6 +29,8 @@ pub(super) struct KeyResult {
     /// The key frame's flipped faces ([`flipped_against_key`]).
     pub flips: Vec<usize>,
     pub crease: Option<CreaseSummary>,
+    /// The key frame's refinement ([`MorphOptions::refine_key_frames`]).
+    pub refine: Option<RefineSummary>,
     pub register_ms: f64,
     pub locate_ms: f64,
 }
@@ -41,7 +44,8 @@ pub(super) struct S1Data<'a> {
     pub rims: Option<Rims<'a>>,
 }
 
-/// Key surface `k`: registered, S1's loops carried, S1 located and carried to 3D.
+/// Key surface `k`: registered, S1's loops carried, S1 located and carried to 3D, the key
+/// frame refined on the key surface ([`MorphOptions::refine_key_frames`]).
 pub(super) fn morph_key(
     s1: &S1Data<'_>,
     k: usize,
@@ -65,7 +69,9 @@ pub(super) fn morph_key(
     // anchors are off the key's): the loops cut at their corners, from the registered
     // disk as it was before the carrying (whose corner warp may change it). Where the
     // carry folds nothing the flips are not the rims' (pout's two lie on the lip's curl,
-    // and either cut leaves them), and a second carry would only cost time.
+    // and either cut leaves them), and a second carry would only cost time. The cut is
+    // chosen by the flips before the key frame's refinement, which runs once, on the
+    // cut taken.
     let tried = placed
         .carried
         .as_ref()
@@ -86,12 +92,16 @@ pub(super) fn morph_key(
             c.summary.flipped_faces_cut_at_corners = at_corners;
         }
     }
+    if options.refine_key_frames {
+        refine_placed(s1, k, &mut placed);
+    }
     let Placed {
         carried,
         locations,
         landing,
         key,
         flips,
+        refine,
     } = placed;
     Ok(KeyResult {
         registration,
@@ -100,6 +110,7 @@ pub(super) fn morph_key(
         key,
         flips,
         crease: carried.map(|c| c.summary),
+        refine,
         register_ms,
         locate_ms: ms(t1),
     })
@@ -113,6 +124,7 @@ struct Placed {
     landing: Vec<Location>,
     key: Vec<[f64; 3]>,
     flips: Vec<usize>,
+    refine: Option<RefineSummary>,
 }
 
 /// S1's loops carried onto key surface `k`'s (cut at `cut`; the corner warp may change
@@ -162,7 +174,46 @@ fn place_s1(
         landing,
         key,
         flips,
+        refine: None,
     })
+}
+
+/// The key frame of `placed` refined on key surface `k` (`crate::refine`), its flipped
+/// faces counted again. Held: S1's boundary, its landmarks, the vertices carried onto the
+/// key surface's rims.
+fn refine_placed(s1: &S1Data<'_>, k: usize, placed: &mut Placed) {
+    let t = Instant::now();
+    let (s1_mesh, sk) = (&s1.surfaces[0].mesh, &s1.surfaces[k].mesh);
+    let mut held = s1_mesh.boundary_flags().to_vec();
+    for &v in s1.surfaces[0].landmarks.vertices() {
+        held[v as usize] = true;
+    }
+    for target in placed.carried.iter().flat_map(|c| &c.targets) {
+        held[target.vertex as usize] = true;
+    }
+    let mut summary = refine_key_frame(
+        &NearestTriangle::new(sk),
+        KeyFrame {
+            faces: s1_mesh.faces(),
+            rest: s1_mesh.positions(),
+            key: sk,
+            locations: &mut placed.locations,
+            frame: &mut placed.key,
+            landing: &placed.landing,
+            held: &held,
+        },
+    );
+    if summary.moves > 0 {
+        placed.flips = flipped_against_key(
+            &placed.key,
+            s1_mesh.faces(),
+            sk.positions(),
+            sk.faces(),
+            &placed.landing,
+        );
+    }
+    summary.ms = ms(t);
+    placed.refine = Some(summary);
 }
 
 /// S1's crease loops carried onto key surface `k`'s (`None` without crease matching);
@@ -225,6 +276,7 @@ pub(super) fn finish_report(
     r.key_frame_flipped_faces_at_vertices = at_vertices.len();
     r.key_frame_largest_flip_patch_at_vertices = largest_patch(faces, &at_vertices);
     r.creases = result.crease.clone();
+    r.refine = result.refine.clone();
     r.registration = Some(result.registration.report.clone());
     r.timings_ms.register = result.register_ms;
     r.timings_ms.locate = result.locate_ms;

@@ -17,8 +17,9 @@ pub struct KeyTimings {
     pub creases_setup: f64,
     /// The registration (0 for the first surface).
     pub register: f64,
-    /// Carrying S1's crease loops (matching, targets, extension, fold check) and point
-    /// location of the first surface's vertices and faces (0 for the first surface).
+    /// Carrying S1's crease loops (matching, targets, extension, fold check), point
+    /// location of the first surface's vertices and faces, and the key frame's refinement
+    /// (0 for the first surface).
     pub locate: f64,
 }
 
@@ -76,6 +77,10 @@ pub struct KeyReport {
     /// How S1's crease loops were carried onto this surface's (`None` for S1 and when
     /// [`crate::MorphOptions::match_creases`] is off).
     pub creases: Option<CreaseSummary>,
+    /// The key frame's refinement on this surface (`None` for S1 and when
+    /// [`crate::MorphOptions::refine_key_frames`] is off): faces whose normal pointed
+    /// against the nearest key triangle before and after, the moves.
+    pub refine: Option<crate::refine::RefineSummary>,
     /// Faces of the key frame (S1's connectivity at this surface's positions) whose
     /// normal points against this surface's normal where the face lies (the key face
     /// under the image of its centroid, [`crate::quality::flipped_against_key`]).
