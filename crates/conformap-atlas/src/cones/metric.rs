@@ -73,11 +73,22 @@ impl ConeMetric {
     fn build(mesh: &TriMesh, pinned: &[u32], closed: bool) -> Result<Self, AtlasError> {
         let n = mesh.num_vertices();
         let part = Partition::new(n, pinned);
-        let l = cotan_laplacian(mesh);
-        let blocks = LaplacianBlocks::new(&l, &part);
-        let chol = Cholesky::factor(&blocks.ii)
-            .map_err(|e| AtlasError::Factorization { why: e.to_string() })?;
-        let curvature = angle_defects(mesh);
+        // the factorization (one core) beside the curvature, the rings and the area
+        let (chol, (curvature, (ring_start, ring), area)) = rayon::join(
+            || {
+                let l = cotan_laplacian(mesh);
+                let blocks = LaplacianBlocks::new(&l, &part);
+                Cholesky::factor(&blocks.ii)
+            },
+            || {
+                (
+                    angle_defects(mesh),
+                    one_rings(mesh),
+                    conformap_operators::surface_area(mesh),
+                )
+            },
+        );
+        let chol = chol.map_err(|e| AtlasError::Factorization { why: e.to_string() })?;
         let mut metric = Self {
             part,
             chol,
@@ -86,11 +97,10 @@ impl ConeMetric {
             closed,
             faces: mesh.faces().to_vec(),
             positions: mesh.positions().to_vec(),
-            length: conformap_operators::surface_area(mesh).sqrt(),
-            ring_start: Vec::new(),
-            ring: Vec::new(),
+            length: area.sqrt(),
+            ring_start,
+            ring,
         };
-        (metric.ring_start, metric.ring) = one_rings(mesh);
         metric.u_k = metric.solve_full(&metric.curvature.clone());
         Ok(metric)
     }
