@@ -8,5 +8,5 @@ pub use metric::ConeMetric;
 pub(crate) use placement::greedy_count;
 pub use placement::{
     best_defects, place_cones, Cone, ConeOptions, ConeSet, CONE_SPACING, MAX_CONE_ANGLE,
-    MIN_CONE_ANGLE,
+    MIN_CONE_ANGLE, SLIDE_TRIALS,
 };

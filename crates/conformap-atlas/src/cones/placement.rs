@@ -590,7 +590,8 @@ fn slide(
 }
 
 /// Neighbours of a cone solved for per cone and round of local descent: 2 (of 6 on
-/// average), those whose first-order change of the spread is lowest ([`slide`]).
+/// average), those whose first-order change of the spread is lowest (the module docs,
+/// step 4).
 pub const SLIDE_TRIALS: usize = 2;
 
 /// The scale factor of boundary first flattening's rule for cones at `vertices`: the
