@@ -58,7 +58,8 @@ pub struct ConeOptions {
     pub local_rounds: usize,
     /// Local descent only on closed genus-0 surfaces with at most this many vertices (on
     /// genus ≥ 1 it slid cones next to the handle loops): a round costs
-    /// [`SLIDE_TRIALS`] Green's function solves per cone and one more per cone moved.
+    /// [`SLIDE_TRIALS`] Green's function solves per cone and one more for the round's
+    /// first-order ranking.
     /// Default: 5,000: spot (2,930 vertices) keeps it (0.835 → 0.825); on david_head
     /// (10,671) it gains 0.246 → 0.240 and the neck cut that packs 0.59 → 0.68 (BFF's
     /// 0.41) for about a quarter of the whole run's time, on the 90k-face meshes 1–2 % of
@@ -695,6 +696,9 @@ fn extremes(
         return Vec::new();
     }
     let mut order: Vec<u32> = (0..u.len() as u32).filter(|&v| !metric.pinned(v)).collect();
+    // the strongest 4·count + 16 first: a few cones' spacing disks seldom hold more of
+    // them (the result does not depend on the number: too few free ones there and the
+    // whole order is filtered below)
     let head = (4 * count + 16).min(order.len());
     if head > 0 && head < order.len() {
         order.select_nth_unstable_by(head - 1, cmp);
