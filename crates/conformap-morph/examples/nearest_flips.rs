@@ -110,7 +110,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if let Some(rf) = &r.refine {
             print!(
                 "; refined: {} -> {} disagreeing, {} moves (largest {:.3} mean edges), {:.1} ms",
-                rf.disagreeing_before, rf.disagreeing_after, rf.moves, rf.largest_move_edges, rf.ms
+                rf.disagreeing_before,
+                rf.disagreeing_after,
+                rf.moves,
+                rf.largest_move_edges,
+                rf.wall_ms
             );
         }
         match exact(s1, sk) {

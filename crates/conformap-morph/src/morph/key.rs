@@ -212,7 +212,7 @@ fn refine_placed(s1: &S1Data<'_>, k: usize, placed: &mut Placed) {
             &placed.landing,
         );
     }
-    summary.ms = ms(t);
+    summary.wall_ms = ms(t);
     placed.refine = Some(summary);
 }
 

@@ -82,7 +82,7 @@ pub struct RefineSummary {
     pub largest_move_edges: f64,
     /// Milliseconds taken (the nearest-triangle grid included when the caller times it
     /// in; [`refine_key_frame`] alone leaves 0).
-    pub ms: f64,
+    pub wall_ms: f64,
 }
 
 /// Faces of `frame` (connectivity `faces`) whose normal points against the normal of the
