@@ -393,14 +393,7 @@ pub fn build_atlas_with_cones(
 /// packing scale is one texel density for all components (and `--pack none` keeps 3D
 /// units). A uniform scale: angles, seams and rigidity are unchanged.
 fn scale_to_surface_area(mesh: &TriMesh, chart: &mut crate::chart::Chart) {
-    let surface: f64 = mesh
-        .faces()
-        .iter()
-        .map(|t| {
-            let p = t.map(|v| mesh.positions()[v as usize]);
-            triangle_area(p[0], p[1], p[2])
-        })
-        .sum();
+    let surface = conformap_operators::surface_area(mesh);
     let layout: f64 = chart
         .cut
         .mesh
