@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::chart::given::{chart_auto, chart_given, AutoCones};
 use crate::chart::seamless::{chart_seamless, seam_rigidity};
 use crate::chart::{
-    chart_component, chart_quality, detach_folded, flipped_corner_faces, merge_pieces,
+    chart_component, chart_quality, detach_folded, flipped_corner_faces, merge_pieces, polish,
     split_overlapping, Piece,
 };
 use crate::component::ComponentChart;
@@ -47,6 +47,19 @@ pub struct AtlasOptions {
     /// of π/2 plus a translation ([`crate::chart::seamless`]; charts packed with quarter
     /// turns only). Default: false.
     pub seamless: bool,
+    /// `--polish`: every chart's layout polished after it is flattened ([`polish`]): one
+    /// Gauss–Newton step on the squared log area ratios and corner-angle errors with the
+    /// seams held rigid, before the repairs and the packing. Lowers the area spread and
+    /// the angle distortion on every closed mesh measured (spot 0.835 → 0.790 and 2.44° →
+    /// 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°), for one factorization of twice the
+    /// chart's vertices (spot +25 % time, kitten_53k +80 %); the charts, and so the
+    /// packing, change with it (spot 0.66 → 0.62). With [`Self::seamless`] the seams keep
+    /// their quarter turns (spot: spread 0.948 → 0.902, seams within 4.3e-13 rad of a
+    /// quarter turn). A component with boundary and no cones keeps its free-boundary
+    /// layout, already the least distortion of its kind: polished, its angles paid for the
+    /// area (human_face 1.11° → 1.28°, spothead 2.14° → 2.58°, hand 1.16° → 1.26°).
+    /// Default: false.
+    pub polish: bool,
 }
 
 impl AtlasOptions {
@@ -59,11 +72,18 @@ impl AtlasOptions {
         layout: Layout::Pack,
         scale: ChartScale::Uniform,
         seamless: false,
+        polish: false,
     };
 
     /// With a fixed number of cones on every component.
     pub fn with_cones(mut self, cones: usize) -> Self {
         self.cones = Some(cones);
+        self
+    }
+
+    /// Polished or not ([`Self::polish`]).
+    pub fn with_polish(mut self, polish: bool) -> Self {
+        self.polish = polish;
         self
     }
 
@@ -130,6 +150,11 @@ pub struct AtlasReport {
     /// The largest residual of a seam edge after the nearest quarter-turn rigid map,
     /// relative to its length ([`crate::chart::seamless::SeamRigidity`]).
     pub seam_rigid_residual_max: f64,
+    /// With `--polish` ([`AtlasOptions::polish`]): the polish's energy summed over the
+    /// charts, before and after (`Σ (log area ratio − mean)² + (μ/3) Σ angle error²`,
+    /// [`crate::chart::polish`]; `[0, 0]` when no chart was polished: free boundaries
+    /// without cones are kept); `None` without.
+    pub polish_energy: Option<[f64; 2]>,
     /// Wall time of each stage, milliseconds.
     pub timings_ms: AtlasTimings,
 }
@@ -145,6 +170,8 @@ pub struct AtlasTimings {
     /// Charts that folded or overlapped themselves, detached and split (each chart's
     /// distortion is measured beside it, on the other core).
     pub splits: f64,
+    /// The charts' distortion polish (`--polish`; 0 without).
+    pub polish: f64,
     /// Neck cuts and the packing into `[0,1]²` (or the rows of `--pack none`).
     pub packing: f64,
     /// The report's measurements (the overlap raster, distortion, seams).
@@ -228,6 +255,7 @@ pub fn build_atlas_with_cones(
     let components = split_components(positions.len(), faces);
     let mut charts = Vec::with_capacity(components.len());
     let mut autos: Vec<AutoCones> = Vec::new();
+    let mut polish_energy = [0.0; 2];
     for (index, face_ids) in components.into_iter().enumerate() {
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
@@ -250,9 +278,21 @@ pub fn build_atlas_with_cones(
             }
             (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
         };
-        scale_to_surface_area(&mesh, &mut chart);
         timings.cones += chart.cones_ms;
         timings.charts += ms(start) - chart.cones_ms;
+        // a free boundary without cones is boundary first flattening's own least distortion:
+        // the polish would trade its angles for area there (AtlasOptions::polish)
+        let free = chart.cones.cones.is_empty() && !mesh.boundary_loops().is_empty();
+        if options.polish && !free {
+            let start = std::time::Instant::now();
+            let polished = polish(&mesh, &chart.cut.mesh, &mut chart.uv);
+            if polished.energy.iter().all(|e| e.is_finite()) {
+                polish_energy[0] += polished.energy[0];
+                polish_energy[1] += polished.energy[1];
+            }
+            timings.polish += ms(start);
+        }
+        scale_to_surface_area(&mesh, &mut chart);
         let start = std::time::Instant::now();
         let whole = Piece {
             faces: (0..mesh.num_faces() as u32).collect(),
@@ -360,6 +400,7 @@ pub fn build_atlas_with_cones(
     let mut report = report(positions, faces, &uv, &charts, &packing, options);
     timings.report = ms(start);
     report.timings_ms = timings;
+    report.polish_energy = options.polish.then_some(polish_energy);
     if options.seamless
         && !(report.seam_rotation_error_max <= SEAMLESS_TOLERANCE
             && report.seam_rigid_residual_max <= SEAMLESS_TOLERANCE)
@@ -596,6 +637,7 @@ fn measure(
         seamless: options.seamless,
         seam_rotation_error_max: rigidity.rotation_error_max,
         seam_rigid_residual_max: rigidity.rigid_residual_max,
+        polish_energy: None,
         timings_ms: AtlasTimings::default(),
     }
 }

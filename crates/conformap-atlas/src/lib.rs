@@ -11,7 +11,8 @@
 //! # Contents
 //! - [`build_atlas`] → [`Atlas`]: the whole atlas of a triangle soup (every component
 //!   charted, self-overlapping charts split, everything packed), with its [`AtlasReport`].
-//! - [`chart`]: one component's chart ([`chart_component`]), its quality.
+//! - [`chart`]: one component's chart ([`chart_component`]), its quality, and the
+//!   distortion polish ([`chart::polish()`], [`AtlasOptions::polish`]).
 //! - [`pack_charts`] / [`pack_outlined`] → [`Packing`]: the charts scaled by one common
 //!   factor (the largest that fits), placed both as rectangles (each turned to its
 //!   smallest bounding rectangle, a skyline packer) and by their outlines (a profile

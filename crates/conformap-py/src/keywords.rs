@@ -59,6 +59,7 @@ pub const ATLAS: &[&str] = &[
     "pack",
     "scale",
     "seamless",
+    "polish",
     "strict",
 ];
 
@@ -224,6 +225,7 @@ pub fn atlas_job(
     pack: &str,
     scale: &str,
     seamless: bool,
+    polish: bool,
     strict: bool,
 ) -> PyResult<AtlasJob> {
     let (input, output) = io(strict);
@@ -257,6 +259,7 @@ pub fn atlas_job(
         }
     };
     job.seamless = seamless;
+    job.polish = polish;
     job.per_chart_scale = match scale {
         "uniform" => false,
         "per-chart" => true,
@@ -441,6 +444,7 @@ pub fn template(
             &kw.text("pack", "square")?,
             &kw.text("scale", "uniform")?,
             kw.flag("seamless")?,
+            kw.flag("polish")?,
             strict,
         )?),
     })

@@ -87,6 +87,27 @@ def test_atlas_seamless_matches_cli(tmp_path):
         conformap.atlas(V, F, cones="auto", seamless=True)
 
 
+def test_atlas_polish_matches_cli_and_lowers_the_distortion(tmp_path):
+    V, F = conformap.read_mesh(FIXTURES / "spot.obj")
+    _, _, plain = conformap.atlas(V, F)
+    uv, F_uv, report = conformap.atlas(V, F, polish=True)
+    code, cli, err = run_cli(["atlas", str(FIXTURES / "spot.obj"), "-o", str(tmp_path / "a.obj"), "--polish"], tmp_path)
+    assert code == 0, err
+    a = report["atlas"]
+    assert a["area_spread"] == pytest.approx(cli["atlas"]["area_spread"], rel=1e-12)
+    before, after = a["polish_energy"]
+    assert after < before
+    assert plain["atlas"]["polish_energy"] is None
+    assert a["area_spread"] < plain["atlas"]["area_spread"] - 0.03
+    assert a["angle_mean_deg"] < plain["atlas"]["angle_mean_deg"]
+    assert a["flipped"] == 0 and a["overlap"]["covered_twice"] == 0
+    assert uv.min() >= 0.0 and uv.max() <= 1.0
+    # with seamless the seams keep their quarter turns
+    _, _, both = conformap.atlas(V, F, polish=True, seamless=True)
+    assert both["atlas"]["seam_rotation_error_max"] <= 1e-6
+    assert both["atlas"]["seam_rigid_residual_max"] <= 1e-6
+
+
 def test_atlas_cones_given_auto_and_unpacked():
     V, F = conformap.read_mesh(FIXTURES / "spot.obj")
     _, _, placed = conformap.atlas(V, F, cones=8)

@@ -12,6 +12,7 @@ mod cut;
 pub(crate) mod given;
 mod merge;
 pub(crate) mod piece;
+pub mod polish;
 mod quality;
 mod regions;
 mod repair;
@@ -29,6 +30,7 @@ use crate::error::AtlasError;
 
 pub(crate) use merge::merge_pieces;
 pub use piece::Piece;
+pub use polish::{polish, PolishReport};
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};

@@ -79,6 +79,9 @@ pub struct AtlasJob {
     /// of 90° plus a translation (genus ≥ 1: a holomorphic 1-form's layout, seams pure
     /// translations); charts packed with quarter turns only. Default: false.
     pub seamless: bool,
+    /// `--polish`: every chart's layout polished after it is flattened
+    /// ([`AtlasOptions::polish`]). Default: false.
+    pub polish: bool,
 }
 
 impl AtlasJob {
@@ -95,6 +98,7 @@ impl AtlasJob {
             pack_none: false,
             per_chart_scale: false,
             seamless: false,
+            polish: false,
         }
     }
 
@@ -120,6 +124,7 @@ impl AtlasJob {
             o.scale = ChartScale::PerChart;
         }
         o.seamless = self.seamless;
+        o.polish = self.polish;
         o
     }
 
@@ -298,6 +303,14 @@ impl MapJob for AtlasJob {
                  the rigid map {:.1e} of the edge length",
                 r.seam_rotation_error_max, r.seam_rigid_residual_max
             ));
+        }
+        match r.polish_energy {
+            Some([before, after]) if before > 0.0 => summary.push_str(&format!(
+                "; polished: distortion energy {:.0} % lower",
+                100.0 * (1.0 - after / before)
+            )),
+            Some(_) => summary.push_str("; nothing polished (free boundaries kept as flattened)"),
+            None => {}
         }
         let strict_violation = (!clean).then(|| {
             format!(
