@@ -81,4 +81,4 @@ pub use pack::{
     pack_charts, pack_outlined, ChartPlacement, PackOptions, Packing, PROFILE_CELL, PROFILE_REFINE,
     PROFILE_REFINE_STEPS, PROFILE_STEPS,
 };
-pub use summary::atlas_peak_bytes;
+pub use summary::{atlas_peak_bytes, atlas_peak_bytes_with};

@@ -22,3 +22,16 @@ impl AtlasReport {
 pub fn atlas_peak_bytes(mesh: &TriMesh) -> u64 {
     2 * flatten_peak_bytes(mesh, &FlattenOptions::DEFAULT)
 }
+
+/// [`atlas_peak_bytes`] with the options' extra work: `--polish` factors a system of twice
+/// the chart's vertices with 2 × 2 blocks, about as much again as the estimate without
+/// (measured peak resident memory: kitten_53k 160 → 274 MB, armadillo 121 → 202 MB with
+/// the polish, against 202 and 166 MB estimated without; 400 and 330 MB with).
+pub fn atlas_peak_bytes_with(mesh: &TriMesh, options: &crate::AtlasOptions) -> u64 {
+    let plain = atlas_peak_bytes(mesh);
+    if options.polish {
+        2 * plain
+    } else {
+        plain
+    }
+}

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use conformap_atlas::{
-    atlas_peak_bytes, build_atlas_with_cones, AtlasOptions, ChartScale, Layout, PackOptions,
+    atlas_peak_bytes_with, build_atlas_with_cones, AtlasOptions, ChartScale, Layout, PackOptions,
 };
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
@@ -227,7 +227,7 @@ impl MapJob for AtlasJob {
     }
 
     fn peak_bytes(&self, mesh: &TriMesh) -> u64 {
-        atlas_peak_bytes(mesh)
+        atlas_peak_bytes_with(mesh, &self.options())
     }
 
     fn solve(&self, input: &Input) -> Result<Solved, Failure> {
