@@ -47,12 +47,13 @@ pub struct AtlasOptions {
     /// of π/2 plus a translation ([`crate::chart::seamless`]; charts packed with quarter
     /// turns only). Default: false.
     pub seamless: bool,
-    /// `--polish`: every chart's layout polished after it is flattened ([`polish`]): one
+    /// `--polish`: every chart's layout polished after it is flattened ([`polish()`]): one
     /// Gauss–Newton step on the squared log area ratios and corner-angle errors with the
     /// seams held rigid, before the repairs and the packing. Lowers the area spread and
-    /// the angle distortion on every closed mesh measured (spot 0.835 → 0.790 and 2.44° →
-    /// 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°), for one factorization of twice the
-    /// chart's vertices (spot +25 % time, kitten_53k +80 %); the charts, and so the
+    /// the angle distortion on every closed mesh of the atlas table (spot 0.835 → 0.790
+    /// and 2.44° → 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°; eightsim's 173 vertices
+    /// spread 0.164 → 0.173 for 3.67° → 3.43°), for one factorization of twice the chart's
+    /// vertices (whole run: spot +7–18 %, kitten_53k +65 %); the charts, and so the
     /// packing, change with it (spot 0.66 → 0.62). With [`Self::seamless`] the seams keep
     /// their quarter turns (spot: spread 0.948 → 0.902, seams within 4.3e-13 rad of a
     /// quarter turn). A component with boundary and no cones keeps its free-boundary
@@ -152,7 +153,7 @@ pub struct AtlasReport {
     pub seam_rigid_residual_max: f64,
     /// With `--polish` ([`AtlasOptions::polish`]): the polish's energy summed over the
     /// charts, before and after (`Σ (log area ratio − mean)² + (μ/3) Σ angle error²`,
-    /// [`crate::chart::polish`]; `[0, 0]` when no chart was polished: free boundaries
+    /// [`crate::chart::polish()`]; `[0, 0]` when no chart was polished: free boundaries
     /// without cones are kept); `None` without.
     pub polish_energy: Option<[f64; 2]>,
     /// Wall time of each stage, milliseconds.

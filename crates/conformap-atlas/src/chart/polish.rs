@@ -186,7 +186,9 @@ pub fn polish(uncut: &TriMesh, cut: &TriMesh, uv: &mut [Complex64]) -> PolishRep
 
 impl SeamEdge {
     /// The two real rows of `w_b′ − w_a′ − R (w_b − w_a) = 0` over the interleaved
-    /// variables `(u_0, v_0, u_1, v_1, …)`.
+    /// variables `(u_0, v_0, u_1, v_1, …)`, as (variable, coefficient): six entries each,
+    /// padded to eight with zeros so both rows name the same eight variables (a vertex
+    /// named twice, as a cut's tip on both sides, adds up).
     fn rows(&self) -> [[(usize, f64); 8]; 2] {
         let (c, s) = (self.rotation.re, self.rotation.im);
         let (u, v) = (|k: usize| 2 * k, |k: usize| 2 * k + 1);
