@@ -455,7 +455,7 @@ fn scale_to_surface_area(mesh: &TriMesh, chart: &mut crate::chart::Chart) {
 /// The cones of `given` (input vertices) on a component whose vertices are `vertices`
 /// (local → input), in the component's numbering.
 fn local_cones(given: &[(u32, f64)], vertices: &[u32]) -> Vec<Cone> {
-    let local: std::collections::HashMap<u32, u32> = vertices
+    let local: rustc_hash::FxHashMap<u32, u32> = vertices
         .iter()
         .enumerate()
         .map(|(l, &v)| (v, l as u32))
@@ -488,7 +488,7 @@ pub fn split_components(vertices: usize, faces: &[[u32; 3]]) -> Vec<Vec<u32>> {
             }
         }
     }
-    let mut group_of = std::collections::HashMap::new();
+    let mut group_of = rustc_hash::FxHashMap::default();
     let mut groups: Vec<Vec<u32>> = Vec::new();
     for (f, t) in faces.iter().enumerate() {
         let root = find(&mut parent, t[0]);
@@ -508,7 +508,7 @@ fn component_mesh(
     faces: &[[u32; 3]],
     ids: &[u32],
 ) -> Result<(TriMesh, Vec<u32>), String> {
-    let mut local = std::collections::HashMap::new();
+    let mut local = rustc_hash::FxHashMap::default();
     let mut vertices = Vec::new();
     let mut tris = Vec::with_capacity(ids.len());
     for &f in ids {

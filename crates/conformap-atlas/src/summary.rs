@@ -5,7 +5,7 @@ use conformap_disk::{flatten_peak_bytes, FlattenOptions};
 use conformap_mesh::TriMesh;
 use conformap_operators::SolverSummary;
 
-use crate::AtlasReport;
+use crate::{AtlasOptions, AtlasReport};
 
 impl AtlasReport {
     /// A direct method (no iteration): converged when the atlas is clean (no flipped face,
@@ -27,7 +27,7 @@ pub fn atlas_peak_bytes(mesh: &TriMesh) -> u64 {
 /// the chart's vertices with 2 × 2 blocks, about as much again as the estimate without
 /// (measured peak resident memory: kitten_53k 160 → 274 MB, armadillo 121 → 202 MB with
 /// the polish, against 202 and 166 MB estimated without; 400 and 330 MB with).
-pub fn atlas_peak_bytes_with(mesh: &TriMesh, options: &crate::AtlasOptions) -> u64 {
+pub fn atlas_peak_bytes_with(mesh: &TriMesh, options: &AtlasOptions) -> u64 {
     let plain = atlas_peak_bytes(mesh);
     if options.polish {
         2 * plain

@@ -1,7 +1,7 @@
 //! Seamed maps: texture coordinates per face corner (`f v/vt` with a vertex carrying
 //! several `vt`), as `global` writes them and as other tools' atlases come.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use crate::error::WriteProblem;
 
@@ -64,7 +64,8 @@ impl CornerUv {
     /// coordinate) pair, numbered by first use in face order. Returns, per split vertex, its
     /// mesh vertex and its texture coordinate index, and the faces in split numbering.
     pub fn split(&self, mesh_faces: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<[u32; 3]>) {
-        let mut index: HashMap<(u32, u32), u32> = HashMap::with_capacity(self.texcoords.len());
+        let mut index: HashMap<(u32, u32), u32> =
+            HashMap::with_capacity_and_hasher(self.texcoords.len(), Default::default());
         let mut pairs = Vec::with_capacity(self.texcoords.len());
         let faces = mesh_faces
             .iter()

@@ -8,7 +8,7 @@
 //! `conformap_metrics::boundary_crossings`), and each piece's own boundary already does
 //! not cross itself. Faces keep their coordinates; the seams left are the ones that were.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use conformap_mesh::NO_HALFEDGE;
 use conformap_metrics::segments_meet;
@@ -87,7 +87,7 @@ pub(crate) fn merge_pieces(whole: &Piece, pieces: Vec<Piece>) -> Result<Vec<Piec
                 continue;
             }
             // neighbours across the chart's own edges, most shared edges first
-            let mut shared: HashMap<usize, usize> = HashMap::new();
+            let mut shared: HashMap<usize, usize> = HashMap::default();
             for &h in &bnd[i] {
                 let j = graph.owner_across(&owner, h as usize);
                 if j != usize::MAX && groups[j].is_some() {

@@ -1,7 +1,7 @@
 //! A flat piece of a component and the pieces cut from it (what the overlap splits, the
 //! fold repair, the last-resort regions and the neck cuts share).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use conformap_mesh::TriMesh;
 use num_complex::Complex64;
@@ -33,7 +33,7 @@ fn local_uv(local: &HashMap<u32, u32>, parent: &[Complex64], n: usize) -> Vec<Co
 
 /// The piece of `piece` made of its faces `faces`, in the parent's layout.
 pub(crate) fn sub_piece(piece: &Piece, faces: &[u32]) -> Result<Piece, AtlasError> {
-    let mut local = HashMap::new();
+    let mut local = HashMap::default();
     let mut original = Vec::new();
     let mut positions = Vec::new();
     let mut tris = Vec::with_capacity(faces.len());

@@ -21,7 +21,7 @@
 //! configuration whose best angles break that has the offending cones held at the bound
 //! (active set).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use serde::{Deserialize, Serialize};
 
@@ -157,11 +157,11 @@ impl<'a> Columns<'a> {
         let rhs = centered(metric.face_log_scale(metric.curvature_potential()));
         Self {
             metric,
-            cache: HashMap::new(),
+            cache: HashMap::default(),
             rhs,
-            dots: HashMap::new(),
-            rhs_dots: HashMap::new(),
-            greens: HashMap::new(),
+            dots: HashMap::default(),
+            rhs_dots: HashMap::default(),
+            greens: HashMap::default(),
             start: None,
         }
     }

@@ -2,7 +2,7 @@
 //! (closed ones through cones and their handles), charts that overlap themselves split,
 //! everything packed into `[0,1]²` with one texel density.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::path::{Path, PathBuf};
 
 use conformap_atlas::{
@@ -242,20 +242,26 @@ impl MapJob for AtlasJob {
         )
         .map_err(|e| input.fail(atlas_failure(&e)))?;
         let solve_ms = t.elapsed().as_secs_f64() * 1e3;
-        let t = std::time::Instant::now();
-        let corner: Vec<Complex64> = atlas
-            .uv
-            .iter()
-            .map(|p| Complex64::new(p[0], p[1]))
-            .collect();
-        let metrics = corner_map_metrics(mesh, &corner, &MetricsOptions::DEFAULT)?;
-        let metrics_ms = t.elapsed().as_secs_f64() * 1e3;
+        // the metrics (one core) beside the shared texture coordinates (the other)
+        let (metrics, uv) = rayon::join(
+            || {
+                let t = std::time::Instant::now();
+                let corner: Vec<Complex64> = atlas
+                    .uv
+                    .iter()
+                    .map(|p| Complex64::new(p[0], p[1]))
+                    .collect();
+                let metrics = corner_map_metrics(mesh, &corner, &MetricsOptions::DEFAULT);
+                (metrics, t.elapsed().as_secs_f64() * 1e3)
+            },
+            || shared_corner_uv(mesh, &atlas.uv),
+        );
+        let (metrics, metrics_ms) = (metrics.0?, metrics.1);
         let mut atlas = atlas;
         atlas.report.non_manifold = input.split.as_ref().map(|s| s.report.clone());
         let r = &atlas.report;
         let solver = SolverSection::new(r.summary(), SolverDetail::None);
         let clean = solver.summary.converged;
-        let uv = shared_corner_uv(mesh, &atlas.uv);
         let flat_points = uv.texcoords.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let flat_faces = uv.faces.clone();
         let mut summary = format!(
@@ -344,7 +350,7 @@ impl MapJob for AtlasJob {
 /// Per-corner texture coordinates with one entry per distinct (vertex, coordinate): the
 /// corners of a vertex inside one chart share their `vt`.
 fn shared_corner_uv(mesh: &TriMesh, corner: &[[f64; 2]]) -> CornerUv {
-    let mut index: HashMap<(u32, u64, u64), u32> = HashMap::new();
+    let mut index: HashMap<(u32, u64, u64), u32> = HashMap::default();
     let mut texcoords = Vec::new();
     let faces = mesh
         .faces()
