@@ -135,3 +135,18 @@ pub(crate) fn join_to_cut(
     }
     added
 }
+
+/// Every seam edge of `cut` (the surface `mesh` opened along its cut, faces in `mesh`'s
+/// order) as `[a, b, a′, b′]`: the copies of one edge `a → b` on one side and of the same
+/// edge on the other side, where its opposite half-edge runs `b′ → a′`.
+pub(crate) fn seam_edges(mesh: &TriMesh, cut: &TriMesh) -> Vec<[u32; 4]> {
+    let start = |h: usize| cut.faces()[h / 3][h % 3];
+    let end = |h: usize| cut.faces()[h / 3][(h + 1) % 3];
+    mesh.opposite_halfedges()
+        .iter()
+        .enumerate()
+        .filter(|&(h, &o)| o != conformap_mesh::NO_HALFEDGE && h < o as usize)
+        .map(|(h, &o)| [start(h), end(h), end(o as usize), start(o as usize)])
+        .filter(|&[a, b, a2, b2]| a != a2 || b != b2)
+        .collect()
+}

@@ -249,14 +249,9 @@ fn flatten_cut(
 /// The two sides of every seam, as boundary edges of the cut mesh named by their first
 /// vertex along the boundary (a boundary half-edge of a face runs with the loop).
 fn seam_pairs(mesh: &TriMesh, cut: &CutMesh) -> Vec<(u32, u32)> {
-    let start = |h: usize| cut.mesh.faces()[h / 3][h % 3];
-    let end = |h: usize| cut.mesh.faces()[h / 3][(h + 1) % 3];
-    mesh.opposite_halfedges()
-        .iter()
-        .enumerate()
-        .filter(|&(h, &o)| o != conformap_mesh::NO_HALFEDGE && h < o as usize)
-        .filter(|&(h, &o)| start(h) != end(o as usize) || end(h) != start(o as usize))
-        .map(|(h, &o)| (start(h), start(o as usize)))
+    cut::seam_edges(mesh, &cut.mesh)
+        .into_iter()
+        .map(|[a, _, _, b2]| (a, b2))
         .collect()
 }
 

@@ -28,7 +28,7 @@
 //! 0.282 and 0.43° → 0.36°. A second step gains under 1 % of spread (a prototype of the
 //! same step: spot 0.791 → 0.788) for another factorization.
 
-use conformap_mesh::{TriMesh, NO_HALFEDGE};
+use conformap_mesh::TriMesh;
 use conformap_operators::{triangle_angles, Cholesky, CholeskyOptions, Ordering};
 use num_complex::Complex64;
 use sprs::CsMat;
@@ -219,29 +219,20 @@ impl SeamEdge {
 
 /// The seam edges of the cut disk, with the rotations the layout `uv` gives them.
 fn seam_edges(uncut: &TriMesh, cut: &TriMesh, uv: &[Complex64]) -> Vec<SeamEdge> {
-    let start = |h: usize| cut.faces()[h / 3][h % 3] as usize;
-    let end = |h: usize| cut.faces()[h / 3][(h + 1) % 3] as usize;
-    let mut seams = Vec::new();
-    for (h, &o) in uncut.opposite_halfedges().iter().enumerate() {
-        if o == NO_HALFEDGE || h > o as usize {
-            continue;
-        }
-        let o = o as usize;
-        // h runs a → b, its opposite b′ → a′
-        let (a, b, b2, a2) = (start(h), end(h), start(o), end(o));
-        if a == a2 && b == b2 {
-            continue;
-        }
-        let r = (uv[b2] - uv[a2]) / (uv[b] - uv[a]);
-        seams.push(SeamEdge {
-            a,
-            b,
-            a2,
-            b2,
-            rotation: r / r.norm(),
-        });
-    }
-    seams
+    super::cut::seam_edges(uncut, cut)
+        .into_iter()
+        .map(|e| {
+            let [a, b, a2, b2] = e.map(|v| v as usize);
+            let r = (uv[b2] - uv[a2]) / (uv[b] - uv[a]);
+            SeamEdge {
+                a,
+                b,
+                a2,
+                b2,
+                rotation: r / r.norm(),
+            }
+        })
+        .collect()
 }
 
 /// The largest `|w_b′ − w_a′ − R (w_b − w_a)| / |w_b − w_a|` over the seams.
