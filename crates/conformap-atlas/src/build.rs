@@ -54,7 +54,7 @@ pub struct AtlasOptions {
     /// and 2.44° → 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°; eightsim's 173 vertices
     /// spread 0.164 → 0.173 for 3.67° → 3.43°), for one factorization of twice the chart's
     /// vertices (whole run: spot +7–18 %, kitten_53k +65 %); the charts, and so the
-    /// packing, change with it (spot 0.66 → 0.62). With [`Self::seamless`] the seams keep
+    /// packing, change with it (spot 0.66 → 0.67, a neck cut the plain layout does not take). With [`Self::seamless`] the seams keep
     /// their quarter turns (spot: spread 0.948 → 0.902, seams within 4.3e-13 rad of a
     /// quarter turn). A component with boundary and no cones keeps its free-boundary
     /// layout, already the least distortion of its kind: polished, its angles paid for the

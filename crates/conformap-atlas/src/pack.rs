@@ -293,17 +293,58 @@ fn orders(area_rects: &[BoundingRect]) -> [Vec<usize>; 2] {
     [by_area, by_width]
 }
 
-/// Whether the profile packer fits `outlines` (every point of each chart inside its loops)
-/// into the square at common scale `scale` (texture units per layout unit, as
-/// [`Packing::scale`]) on its coarse grid, in either of its orders: one packing each, a
-/// quick test of whether a change to the charts can beat a scale reached before.
-pub(crate) fn fits_at(outlines: &[Vec<Vec<[f64; 2]>>], scale: f64, options: &PackOptions) -> bool {
-    let points: Vec<Vec<[f64; 2]>> = outlines.iter().map(|o| o.concat()).collect();
-    let (area_rects, square_rects) = options.rects(&points);
-    let turned = turned_charts(outlines, &area_rects, &square_rects, options);
+/// Charts as a neck trial packs them: each chart's outline loops (closed polylines of
+/// layout points; every point of the chart inside them) with its smallest-area and
+/// smallest-square rectangles. A trial replaces one chart by its two parts: only theirs
+/// are measured, the others' rectangles carried over (measuring every chart's again was
+/// a third of a trial's work on eight).
+pub(crate) struct Outlined {
+    loops: Vec<Vec<Vec<[f64; 2]>>>,
+    area: Vec<BoundingRect>,
+    square: Vec<BoundingRect>,
+}
+
+impl Outlined {
+    /// The charts of `loops`, their rectangles measured.
+    pub(crate) fn new(loops: Vec<Vec<Vec<[f64; 2]>>>, options: &PackOptions) -> Self {
+        let points: Vec<Vec<[f64; 2]>> = loops.iter().map(|o| o.concat()).collect();
+        let (area, square) = options.rects(&points);
+        Self {
+            loops,
+            area,
+            square,
+        }
+    }
+
+    /// These charts with chart `slot` replaced by `parts` (each given by its loops).
+    pub(crate) fn split(
+        &self,
+        slot: usize,
+        parts: Vec<Vec<Vec<[f64; 2]>>>,
+        options: &PackOptions,
+    ) -> Self {
+        let new = Self::new(parts, options);
+        let mut out = Self {
+            loops: self.loops.clone(),
+            area: self.area.clone(),
+            square: self.square.clone(),
+        };
+        out.loops.splice(slot..=slot, new.loops);
+        out.area.splice(slot..=slot, new.area);
+        out.square.splice(slot..=slot, new.square);
+        out
+    }
+}
+
+/// Whether the profile packer fits the `charts` into the square at common scale `scale`
+/// (texture units per layout unit, as [`Packing::scale`]) on its coarse grid, in either of
+/// its orders: one packing each, a quick test of whether a change to the charts can beat a
+/// scale reached before.
+pub(crate) fn fits_at(charts: &Outlined, scale: f64, options: &PackOptions) -> bool {
+    let turned = turned_charts(&charts.loops, &charts.area, &charts.square, options);
     let n = options.resolution;
     let cell = if n >= 64 { PROFILE_CELL } else { 1.0 };
-    orders(&area_rects).iter().any(|order| {
+    orders(&charts.area).iter().any(|order| {
         crate::profile::pack(
             &turned,
             order,
@@ -323,23 +364,17 @@ pub(crate) fn fits_at(outlines: &[Vec<Vec<[f64; 2]>>], scale: f64, options: &Pac
 /// gain a neck cut must bring ([`crate::neck::NECK_GAIN`], 3 %).
 pub const TRIAL_STEPS: usize = 7;
 
-/// A neck trial's packing of `outlines`: the profile packer alone on its coarse grid,
+/// A neck trial's packing of `charts`: the profile packer alone on its coarse grid,
 /// searched above `floor` (texture units per layout unit, a scale [`fits_at`] found the
 /// charts reach) in [`TRIAL_STEPS`] steps; `None` when it finds no higher scale. Its
 /// efficiency is not measured (0): a trial is compared by its scale, and the atlas packed
 /// again once its cuts are chosen.
-pub(crate) fn trial_pack(
-    outlines: &[Vec<Vec<[f64; 2]>>],
-    floor: f64,
-    options: &PackOptions,
-) -> Option<Packing> {
-    let points: Vec<Vec<[f64; 2]>> = outlines.iter().map(|o| o.concat()).collect();
-    let (area_rects, square_rects) = options.rects(&points);
+pub(crate) fn trial_pack(charts: &Outlined, floor: f64, options: &PackOptions) -> Option<Packing> {
     let n = options.resolution as f64;
     by_outlines(
-        outlines,
-        &area_rects,
-        &square_rects,
+        &charts.loops,
+        &charts.area,
+        &charts.square,
         floor * n,
         options,
         false,
