@@ -82,9 +82,15 @@ impl Profile {
         // x ≥ 0 (every point lies right of min_x), so a cast takes the floor
         let x_of = |p: [f64; 2]| (p[0] - t.min_x) * scale + half;
         let col = |x: f64| (x as usize).min(columns - 1);
+        // plain comparisons, not `f64::min`/`max`: the points are finite (the packer
+        // refuses others), and the NaN handling of those was most of the packer's time
         let mut put = |k: usize, y: f64| {
-            lo[k] = lo[k].min(y);
-            hi[k] = hi[k].max(y);
+            if y < lo[k] {
+                lo[k] = y;
+            }
+            if y > hi[k] {
+                hi[k] = y;
+            }
         };
         let mut from = 0;
         for &to in &t.loop_ends {
@@ -124,8 +130,12 @@ impl Profile {
             let from = c.saturating_sub(reach);
             let to = (c + reach).min(columns - 1);
             for k in from..=to {
-                glo[c] = glo[c].min(lo[k]);
-                ghi[c] = ghi[c].max(hi[k]);
+                if lo[k] < glo[c] {
+                    glo[c] = lo[k];
+                }
+                if hi[k] > ghi[c] {
+                    ghi[c] = hi[k];
+                }
             }
             glo[c] -= half;
             ghi[c] += half;
