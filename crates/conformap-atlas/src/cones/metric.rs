@@ -15,7 +15,10 @@
 //! about cones — which angles, which vertices — is a few solves with one factor.
 
 use conformap_mesh::TriMesh;
-use conformap_operators::{corner_angles, cotan_laplacian, Cholesky, LaplacianBlocks, Partition};
+use conformap_operators::{
+    corner_angles, cotan_laplacian, interior_pattern, Cholesky, CholeskyOptions, LaplacianBlocks,
+    OperatorError, Partition,
+};
 
 use crate::error::AtlasError;
 
@@ -73,21 +76,29 @@ impl ConeMetric {
     fn build(mesh: &TriMesh, pinned: &[u32], closed: bool) -> Result<Self, AtlasError> {
         let n = mesh.num_vertices();
         let part = Partition::new(n, pinned);
-        // the factorization (one core) beside the curvature, the rings and the area
-        let (chol, (curvature, (ring_start, ring), area)) = rayon::join(
+        // the Laplacian's weights (one core) beside the symbolic analysis of its pattern,
+        // which is the mesh's connectivity, then the curvature, the rings and the area
+        // (cones stage, medians of 9: eight 21.8 → 20.1 ms, spot 24.3 → 22.2), then the
+        // numeric factorization
+        let options = CholeskyOptions::DEFAULT;
+        let (blocks, (analysis, (curvature, (ring_start, ring), area))) = rayon::join(
+            || LaplacianBlocks::new(&cotan_laplacian(mesh), &part),
             || {
-                let l = cotan_laplacian(mesh);
-                let blocks = LaplacianBlocks::new(&l, &part);
-                Cholesky::factor(&blocks.ii)
-            },
-            || {
-                (
+                let analysis = Cholesky::analyse_with(&interior_pattern(mesh, &part), &options);
+                let rest = (
                     angle_defects(mesh),
                     one_rings(mesh),
                     conformap_operators::surface_area(mesh),
-                )
+                );
+                (analysis, rest)
             },
         );
+        let chol = match analysis.and_then(|a| a.factor(&blocks.ii)) {
+            // not expected (the pattern is the same connectivity's), but then the
+            // analysis is redone on the matrix itself
+            Err(OperatorError::PatternMismatch) => Cholesky::factor_with(&blocks.ii, &options),
+            other => other,
+        };
         let chol = chol.map_err(|e| AtlasError::Factorization { why: e.to_string() })?;
         let mut metric = Self {
             part,
