@@ -91,17 +91,20 @@ pub(crate) fn join_to_cut(
         .filter(|&t| !in_tree[t as usize])
         .collect();
     let mut added = 0.0;
-    while !pending.is_empty() {
-        // distances from the whole tree
-        let mut dist = vec![f64::INFINITY; n];
-        let mut parent: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); n];
-        let mut heap = BinaryHeap::new();
-        for v in 0..n {
-            if in_tree[v] {
-                dist[v] = 0.0;
-                heap.push(Reverse((Dist(0.0), v as u32)));
-            }
+    // one Dijkstra search grown from the tree, continued after each path joins it: the
+    // path's vertices enter at distance 0 and whatever they bring nearer is searched again
+    // (distances only fall as the tree grows), instead of a new search from the whole tree
+    // per target
+    let mut dist = vec![f64::INFINITY; n];
+    let mut parent: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); n];
+    let mut heap = BinaryHeap::new();
+    for v in 0..n {
+        if in_tree[v] {
+            dist[v] = 0.0;
+            heap.push(Reverse((Dist(0.0), v as u32)));
         }
+    }
+    while !pending.is_empty() {
         let mut reached = None;
         while let Some(Reverse((Dist(d), v))) = heap.pop() {
             if d > dist[v as usize] {
@@ -124,12 +127,18 @@ pub(crate) fn join_to_cut(
             break; // another component: nothing to join
         };
         let mut v = t;
+        let mut path = Vec::new();
         while !in_tree[v as usize] {
             in_tree[v as usize] = true;
             let (p, e) = parent[v as usize];
             on_cut[e as usize] = true;
             added += dist[v as usize] - dist[p as usize];
+            path.push(v);
             v = p;
+        }
+        for v in path {
+            dist[v as usize] = 0.0;
+            heap.push(Reverse((Dist(0.0), v)));
         }
         pending.retain(|&x| x != t);
     }
