@@ -248,6 +248,37 @@ impl SymbolicAnalysis {
     }
 }
 
+/// The approximate minimum degree ordering of the symmetric pattern of `a` (one
+/// triangle or both; values ignored) alone, without the symbolic factorization that
+/// [`Cholesky::analyse_with`] builds on it: the permutation `Ordering::Amd` would choose
+/// (faer's AMD with its default control on the same pattern). For an ordering computed
+/// on a smaller graph and expanded (`Ordering::Custom`), as the 2 × 2 blocks of a planar
+/// layout's unknowns: on spot's 3,046-vertex chart 2.0 ms as an analysis, the order alone
+/// a third of that.
+///
+/// # Errors
+/// [`OperatorError::NotSquareCsc`] when `a` is not square CSC; the faer error when its
+/// workspace cannot be allocated.
+pub fn amd_permutation(a: &CsMat<f64>) -> Result<Vec<usize>, OperatorError> {
+    let mat = view(a)?;
+    let n = a.rows();
+    let mut fwd = vec![0usize; n];
+    let mut inv = vec![0usize; n];
+    let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_maybe_unsorted_scratch::<
+        usize,
+    >(n, a.nnz()))
+    .map_err(|_| OperatorError::from_faer(faer::sparse::FaerError::OutOfMemory, "the ordering"))?;
+    faer::sparse::linalg::amd::order_maybe_unsorted(
+        &mut fwd,
+        &mut inv,
+        mat.symbolic(),
+        Default::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| OperatorError::from_faer(e, "the ordering"))?;
+    Ok(fwd)
+}
+
 /// A sparse Cholesky factorization `A = LLᵀ` (with fill-reducing permutation), reusable for
 /// any number of solves and refactorizable for a new matrix with the same pattern.
 #[derive(Debug)]

@@ -35,7 +35,7 @@ mod quality;
 mod summary;
 
 pub use cholesky::{
-    relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
+    amd_permutation, relative_residual, solve_dense_spd, Cholesky, CholeskyOptions, DenseCholesky,
     DenseModifiedLblt, FactorStats, InverseGram, Ordering, SymbolicAnalysis,
 };
 pub use circle::{circle_residual, fit_circle, Circle, LoopCircle, FIT_REFINE_STEPS};

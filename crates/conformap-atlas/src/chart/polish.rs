@@ -29,7 +29,10 @@
 //! same step: spot 0.791 → 0.788) for another factorization.
 
 use conformap_mesh::TriMesh;
-use conformap_operators::{triangle_angles, Cholesky, CholeskyOptions, Ordering};
+use conformap_operators::{
+    amd_permutation, triangle_angles, Cholesky, CholeskyOptions, OperatorError, Ordering,
+    SymbolicAnalysis,
+};
 use num_complex::Complex64;
 use sprs::CsMat;
 
@@ -98,16 +101,25 @@ pub fn polish(uncut: &TriMesh, cut: &TriMesh, uv: &mut [Complex64]) -> PolishRep
         seam_residual: 0.0,
     };
     let faces = cut.faces();
-    let target = Target::new(cut, uv);
-    let Some(e0) = target.energy(faces, uv) else {
-        return kept(f64::NAN);
-    };
     let seams = seam_edges(uncut, cut, uv);
     let n = uv.len();
     let pattern = Pattern::new(n, faces, &seams);
-    let mut values = vec![0.0; pattern.rows.len()];
-    let mut gradient = vec![0.0; 2 * n];
-    target.assemble(faces, uv, &pattern, &mut values, &mut gradient);
+    // the ordering and symbolic analysis (pattern only) on one core, the targets, the
+    // energy and the Gauss–Newton system's values on the other
+    let (analysis, assembled) = rayon::join(
+        || pattern.analyse(),
+        || {
+            let target = Target::new(cut, uv);
+            let e0 = target.energy(faces, uv)?;
+            let mut values = vec![0.0; pattern.rows.len()];
+            let mut gradient = vec![0.0; 2 * n];
+            target.assemble(faces, uv, &pattern, &mut values, &mut gradient);
+            Some((target, e0, values, gradient))
+        },
+    );
+    let Some((target, e0, mut values, gradient)) = assembled else {
+        return kept(f64::NAN);
+    };
     let mean_diagonal = (0..2 * n).map(|p| values[pattern.at(p, p)]).sum::<f64>() / (2 * n) as f64;
     for p in 0..2 * n {
         values[pattern.at(p, p)] *= 1.0 + DAMPING;
@@ -124,13 +136,8 @@ pub fn polish(uncut: &TriMesh, cut: &TriMesh, uv: &mut [Complex64]) -> PolishRep
             }
         }
     }
-    let matrix = CsMat::new_csc(
-        (2 * n, 2 * n),
-        pattern.starts.clone(),
-        pattern.rows.clone(),
-        values,
-    );
-    let Ok(chol) = Cholesky::factor_with(&matrix, &pattern.options()) else {
+    let matrix = pattern.matrix(values);
+    let Ok(chol) = analysis.and_then(|a| a.factor(&matrix)) else {
         return kept(e0);
     };
     // augmented Lagrangian: δ = K⁻¹(−g − Cᵀν), ν += ρ C δ
@@ -301,10 +308,16 @@ impl Pattern {
         }
     }
 
-    /// Factorization options: the vertices' minimum-degree order (the analysis of the
-    /// vertex graph, half the size), each vertex's two variables kept together; on one
+    /// The system of this pattern with `values`.
+    fn matrix(&self, values: Vec<f64>) -> CsMat<f64> {
+        let size = self.starts.len() - 1;
+        CsMat::new_csc((size, size), self.starts.clone(), self.rows.clone(), values)
+    }
+
+    /// The symbolic analysis of the system: the vertices' minimum-degree order (computed on
+    /// the vertex graph, half the size), each vertex's two variables kept together; on one
     /// thread below [`PARALLEL_VERTICES`] vertices.
-    fn options(&self) -> CholeskyOptions {
+    fn analyse(&self) -> Result<SymbolicAnalysis, OperatorError> {
         let n = self.neighbours.len();
         let mut starts = vec![0];
         let mut rows = Vec::new();
@@ -316,13 +329,15 @@ impl Pattern {
         let graph = CsMat::new_csc((n, n), starts, rows, ones);
         let threads = if n < PARALLEL_VERTICES { 1 } else { 0 };
         let options = CholeskyOptions::DEFAULT.with_threads(threads);
-        let order =
-            match Cholesky::analyse_with(&graph, &options.clone().with_ordering(Ordering::Amd)) {
-                Ok(analysis) => analysis.permutation(),
-                Err(_) => return options,
-            };
-        let expanded = order.iter().flat_map(|&v| [2 * v, 2 * v + 1]).collect();
-        options.with_ordering(Ordering::Custom(expanded))
+        let options = match amd_permutation(&graph) {
+            Ok(order) => {
+                let expanded = order.iter().flat_map(|&v| [2 * v, 2 * v + 1]).collect();
+                options.with_ordering(Ordering::Custom(expanded))
+            }
+            Err(_) => options,
+        };
+        // the values are not read by the analysis
+        Cholesky::analyse_with(&self.matrix(vec![0.0; self.rows.len()]), &options)
     }
 
     /// Where vertex `i ≤ j`'s rows sit in vertex `j`'s columns: entry `(2i + a, 2j + b)`
