@@ -130,7 +130,7 @@ def atlas(
     pack: Literal["square", "none"] = "square",
     scale: Literal["uniform", "per-chart"] = "uniform",
     seamless: bool = False,
-    polish: bool = False,
+    polish: Union[bool, Literal["auto", "always", "never"], None] = None,
     strict: bool = False,
     max_memory: Optional[int] = None,
 ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.uint32], Report]:
@@ -154,10 +154,14 @@ def atlas(
     layout, seams pure translations), charts packed with quarter turns only;
     ``report["atlas"]["seam_rotation_error_max"]`` (radians) and
     ``["seam_rigid_residual_max"]`` (relative to the edge length) measure it. Not with
-    ``cones="auto"``. ``polish=True`` (``--polish``): every chart's layout polished after
-    it is flattened, one Gauss–Newton step that lowers the area spread and the angle
-    distortion with the seams held rigid (``report["atlas"]["polish_energy"]``: the energy
-    before and after); with ``seamless`` the seams keep their quarter turns.
+    ``cones="auto"``. ``polish`` (``--polish=WHEN``): which charts' layouts are polished
+    after they are flattened, one Gauss–Newton step that lowers the area spread and the
+    angle distortion with the seams held rigid. ``None`` or ``"auto"`` (the default): the
+    charts whose cone metric spreads 0.5 or more, on components of up to 20,000 vertices;
+    ``True`` or ``"always"``: every chart with cones; ``False`` or ``"never"``: none.
+    ``report["atlas"]["polished_components"]`` counts them, ``["polish_energy"]`` is the
+    energy before and after (``None`` when nothing was polished); with ``seamless`` the
+    seams keep their quarter turns.
 
     Returns ``(uv, F_uv, report)``: ``uv`` (k, 2) texture coordinates in [0, 1]², ``F_uv``
     (m, 3) their indices per face corner (face ``i`` of ``F`` has ``uv[F_uv[i]]``),

@@ -25,6 +25,58 @@ use crate::pack::{pack_charts, PackOptions, Packing};
 /// tenths).
 pub const SEAMLESS_TOLERANCE: f64 = 1e-6;
 
+/// [`Polish::Auto`] polishes a chart whose cone metric spreads at least this much (sd of
+/// the log area ratio): 0.5. The step wins back what the linearized metric misses, which
+/// grows with `u`: measured against the same run without, spot (0.82 in the metric) 0.835
+/// → 0.790 and armadillo (1.85) 1.860 → 1.718, −5 % and −8 %; below 0.5 it gains 0.4–1.4 %
+/// (brain, david_head, kitten_53k, eight, fertility) and on eightsim (0.16) the spread
+/// rises 0.164 → 0.173.
+pub const POLISH_AUTO_SPREAD: f64 = 0.5;
+
+/// [`Polish::Auto`] polishes charts of components of at most this many vertices: 20,000.
+/// The step's factorization (twice the vertices, 2 × 2 blocks) grows faster than the rest
+/// of the atlas: spot (2,930 vertices) +15–20 % of the whole run, armadillo (43,243)
+/// +44 %, kitten_53k +65 %. Larger surfaces are polished with [`Polish::Always`].
+pub const POLISH_AUTO_VERTICES: usize = 20_000;
+
+/// Which charts the distortion polish ([`polish()`]) runs on. Never on a component with
+/// boundary and no cones (its free-boundary layout is already the least distortion of its
+/// kind; [`AtlasOptions::polish`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Polish {
+    /// No chart (`--polish=never`).
+    Never,
+    /// Charts whose cone metric spreads at least [`POLISH_AUTO_SPREAD`], of components of
+    /// at most [`POLISH_AUTO_VERTICES`] vertices (the default): where the step pays and
+    /// costs little.
+    #[default]
+    Auto,
+    /// Every chart with cones (`--polish`).
+    Always,
+}
+
+impl Polish {
+    /// Whether a chart of a component of `vertices` vertices whose cone metric spreads
+    /// `spread` is polished (`spread` NaN: no cones, or not measured).
+    pub fn applies(self, vertices: usize, spread: f64) -> bool {
+        match self {
+            Self::Never => false,
+            Self::Always => true,
+            Self::Auto => spread >= POLISH_AUTO_SPREAD && vertices <= POLISH_AUTO_VERTICES,
+        }
+    }
+
+    /// The mode's name, as the CLI spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Never => "never",
+            Self::Auto => "auto",
+            Self::Always => "always",
+        }
+    }
+}
+
 /// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
@@ -47,20 +99,21 @@ pub struct AtlasOptions {
     /// of π/2 plus a translation ([`crate::chart::seamless`]; charts packed with quarter
     /// turns only). Default: false.
     pub seamless: bool,
-    /// `--polish`: every chart's layout polished after it is flattened ([`polish()`]): one
-    /// Gauss–Newton step on the squared log area ratios and corner-angle errors with the
-    /// seams held rigid, before the repairs and the packing. Lowers the area spread and
-    /// the angle distortion on every closed mesh of the atlas table (spot 0.835 → 0.790
-    /// and 2.44° → 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°; eightsim's 173 vertices
-    /// spread 0.164 → 0.173 for 3.67° → 3.43°), for one factorization of twice the chart's
-    /// vertices (whole run: spot +7–18 %, kitten_53k +65 %); the charts, and so the
-    /// packing, change with it (spot 0.66 → 0.67, a neck cut the plain layout does not take). With [`Self::seamless`] the seams keep
-    /// their quarter turns (spot: spread 0.948 → 0.902, seams within 4.3e-13 rad of a
-    /// quarter turn). A component with boundary and no cones keeps its free-boundary
-    /// layout, already the least distortion of its kind: polished, its angles paid for the
-    /// area (human_face 1.11° → 1.28°, spothead 2.14° → 2.58°, hand 1.16° → 1.26°).
-    /// Default: false.
-    pub polish: bool,
+    /// `--polish`: which charts' layouts are polished after they are flattened
+    /// ([`polish()`]): one Gauss–Newton step on the squared log area ratios and corner-angle
+    /// errors with the seams held rigid, before the repairs and the packing. Lowers the
+    /// area spread and the angle distortion on every closed mesh of the atlas table (spot
+    /// 0.835 → 0.790 and 2.44° → 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°; eightsim's
+    /// 173 vertices spread 0.164 → 0.173 for 3.67° → 3.43°), for one factorization of twice
+    /// the chart's vertices (whole run: spot +15–20 %, kitten_53k +65 %); the charts, and
+    /// so the packing, change with it (spot 0.66 → 0.67, a neck cut the plain layout does
+    /// not take). With [`Self::seamless`] the seams keep their quarter turns (spot: spread
+    /// 0.948 → 0.902, seams within 4.3e-13 rad of a quarter turn). A component with
+    /// boundary and no cones keeps its free-boundary layout, already the least distortion
+    /// of its kind: polished, its angles paid for the area (human_face 1.11° → 1.28°,
+    /// spothead 2.14° → 2.58°, hand 1.16° → 1.26°). Default: [`Polish::Auto`] (where it
+    /// pays and costs little).
+    pub polish: Polish,
 }
 
 impl AtlasOptions {
@@ -73,7 +126,7 @@ impl AtlasOptions {
         layout: Layout::Pack,
         scale: ChartScale::Uniform,
         seamless: false,
-        polish: false,
+        polish: Polish::Auto,
     };
 
     /// With a fixed number of cones on every component.
@@ -82,8 +135,19 @@ impl AtlasOptions {
         self
     }
 
-    /// Polished or not ([`Self::polish`]).
+    /// Every chart with cones polished (`true`: [`Polish::Always`]) or none (`false`:
+    /// [`Polish::Never`]) ([`Self::polish`]).
     pub fn with_polish(mut self, polish: bool) -> Self {
+        self.polish = if polish {
+            Polish::Always
+        } else {
+            Polish::Never
+        };
+        self
+    }
+
+    /// With polish mode `polish` ([`Self::polish`]).
+    pub fn with_polish_mode(mut self, polish: Polish) -> Self {
         self.polish = polish;
         self
     }
@@ -151,10 +215,13 @@ pub struct AtlasReport {
     /// The largest residual of a seam edge after the nearest quarter-turn rigid map,
     /// relative to its length ([`crate::chart::seamless::SeamRigidity`]).
     pub seam_rigid_residual_max: f64,
-    /// With `--polish` ([`AtlasOptions::polish`]): the polish's energy summed over the
-    /// charts, before and after (`Σ (log area ratio − mean)² + (μ/3) Σ angle error²`,
-    /// [`crate::chart::polish()`]; `[0, 0]` when no chart was polished: free boundaries
-    /// without cones are kept); `None` without.
+    /// The polish mode ([`AtlasOptions::polish`]).
+    pub polish: Polish,
+    /// Components whose chart was polished ([`Polish::applies`]).
+    pub polished_components: usize,
+    /// The polish's energy summed over the polished charts, before and after
+    /// (`Σ (log area ratio − mean)² + (μ/3) Σ angle error²`, [`crate::chart::polish()`]);
+    /// `None` when no chart was polished.
     pub polish_energy: Option<[f64; 2]>,
     /// Wall time of each stage, milliseconds.
     pub timings_ms: AtlasTimings,
@@ -171,7 +238,7 @@ pub struct AtlasTimings {
     /// Charts that folded or overlapped themselves, detached and split (each chart's
     /// distortion is measured beside it, on the other core).
     pub splits: f64,
-    /// The charts' distortion polish (`--polish`; 0 without).
+    /// The charts' distortion polish (0 where no chart was polished).
     pub polish: f64,
     /// Neck cuts and the packing into `[0,1]²` (or the rows of `--pack none`).
     pub packing: f64,
@@ -257,6 +324,7 @@ pub fn build_atlas_with_cones(
     let mut charts = Vec::with_capacity(components.len());
     let mut autos: Vec<AutoCones> = Vec::new();
     let mut polish_energy = [0.0; 2];
+    let mut polished_components = 0;
     for (index, face_ids) in components.into_iter().enumerate() {
         let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
             .map_err(|why| AtlasError::Component { index, why })?;
@@ -284,13 +352,18 @@ pub fn build_atlas_with_cones(
         // a free boundary without cones is boundary first flattening's own least distortion:
         // the polish would trade its angles for area there (AtlasOptions::polish)
         let free = chart.cones.cones.is_empty() && !mesh.boundary_loops().is_empty();
-        if options.polish && !free {
+        if !free
+            && options
+                .polish
+                .applies(mesh.num_vertices(), chart.cones.area_spread)
+        {
             let start = std::time::Instant::now();
             let polished = polish(&mesh, &chart.cut.mesh, &mut chart.uv);
             if polished.energy.iter().all(|e| e.is_finite()) {
                 polish_energy[0] += polished.energy[0];
                 polish_energy[1] += polished.energy[1];
             }
+            polished_components += 1;
             timings.polish += ms(start);
         }
         scale_to_surface_area(&mesh, &mut chart);
@@ -401,7 +474,9 @@ pub fn build_atlas_with_cones(
     let mut report = report(positions, faces, &uv, &charts, &packing, options);
     timings.report = ms(start);
     report.timings_ms = timings;
-    report.polish_energy = options.polish.then_some(polish_energy);
+    report.polish = options.polish;
+    report.polished_components = polished_components;
+    report.polish_energy = (polished_components > 0).then_some(polish_energy);
     if options.seamless
         && !(report.seam_rotation_error_max <= SEAMLESS_TOLERANCE
             && report.seam_rigid_residual_max <= SEAMLESS_TOLERANCE)
@@ -638,6 +713,8 @@ fn measure(
         seamless: options.seamless,
         seam_rotation_error_max: rigidity.rotation_error_max,
         seam_rigid_residual_max: rigidity.rigid_residual_max,
+        polish: options.polish,
+        polished_components: 0,
         polish_energy: None,
         timings_ms: AtlasTimings::default(),
     }

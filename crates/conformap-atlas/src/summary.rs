@@ -23,13 +23,14 @@ pub fn atlas_peak_bytes(mesh: &TriMesh) -> u64 {
     2 * flatten_peak_bytes(mesh, &FlattenOptions::DEFAULT)
 }
 
-/// [`atlas_peak_bytes`] with the options' extra work: `--polish` factors a system of twice
+/// [`atlas_peak_bytes`] with the options' extra work: the polish factors a system of twice
 /// the chart's vertices with 2 × 2 blocks, about as much again as the estimate without
 /// (measured peak resident memory: kitten_53k 160 → 274 MB, armadillo 121 → 202 MB with
-/// the polish, against 202 and 166 MB estimated without; 400 and 330 MB with).
+/// the polish, against 202 and 166 MB estimated without; 400 and 330 MB with). Counted
+/// whenever the mode may polish a surface of this size (the spread is not known yet).
 pub fn atlas_peak_bytes_with(mesh: &TriMesh, options: &AtlasOptions) -> u64 {
     let plain = atlas_peak_bytes(mesh);
-    if options.polish {
+    if options.polish.applies(mesh.num_vertices(), f64::INFINITY) {
         2 * plain
     } else {
         plain

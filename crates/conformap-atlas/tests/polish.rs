@@ -2,7 +2,7 @@
 //! together, every seam edge keeping the rotation between its two sides.
 
 use conformap_atlas::chart::{chart_closed, polish};
-use conformap_atlas::{build_atlas, AtlasOptions, ConeOptions};
+use conformap_atlas::{build_atlas, AtlasOptions, ConeOptions, Polish, POLISH_AUTO_SPREAD};
 use conformap_mesh::{TriMesh, NO_HALFEDGE};
 use num_complex::Complex64;
 
@@ -46,7 +46,7 @@ fn folded(cut: &TriMesh, uv: &[Complex64]) -> usize {
 fn polished_spot_spreads_under_four_fifths_of_boundary_first_flattenings_and_bends_less() {
     let mesh = fixture("spot");
     let (p, f) = (mesh.positions().to_vec(), mesh.faces().to_vec());
-    let plain = build_atlas(&p, &f, &AtlasOptions::default()).expect("atlas");
+    let plain = build_atlas(&p, &f, &AtlasOptions::default().with_polish(false)).expect("atlas");
     let polished = build_atlas(&p, &f, &AtlasOptions::default().with_polish(true)).expect("atlas");
     let (a, b) = (&plain.report, &polished.report);
     // boundary first flattening's own tool at 8 cones spreads 1.0131 on spot (its written
@@ -104,5 +104,33 @@ fn the_polish_keeps_every_seam_edges_rotation() {
             folded(&chart.cut.mesh, &uv) <= folded(&chart.cut.mesh, &chart.uv),
             "{name}"
         );
+    }
+}
+
+/// The default, [`Polish::Auto`], polishes where the cone metric spreads
+/// [`POLISH_AUTO_SPREAD`] or more: spot (0.82) gets exactly the atlas of `--polish`
+/// (`Polish::Always`), eightsim (0.16) exactly the plain one.
+#[test]
+fn auto_polishes_spot_and_leaves_eightsim() {
+    assert_eq!(AtlasOptions::default().polish, Polish::Auto);
+    for (name, polished) in [("spot", true), ("eightsim", false)] {
+        let mesh = fixture(name);
+        let (p, f) = (mesh.positions().to_vec(), mesh.faces().to_vec());
+        let auto = build_atlas(&p, &f, &AtlasOptions::default()).expect("atlas");
+        let same = AtlasOptions::default().with_polish(polished);
+        let other = AtlasOptions::default().with_polish(!polished);
+        let same = build_atlas(&p, &f, &same).expect("atlas");
+        let other = build_atlas(&p, &f, &other).expect("atlas");
+        assert_eq!(auto.uv, same.uv, "{name}");
+        assert_ne!(auto.uv, other.uv, "{name}");
+        let r = &auto.report;
+        assert_eq!(r.polish, Polish::Auto);
+        assert_eq!(r.polished_components, usize::from(polished), "{name}");
+        assert_eq!(r.polish_energy.is_some(), polished, "{name}");
+        let metric = chart_closed(&mesh, 8, &ConeOptions::DEFAULT)
+            .expect("chart")
+            .cones
+            .area_spread;
+        assert_eq!(metric >= POLISH_AUTO_SPREAD, polished, "{name}: {metric}");
     }
 }

@@ -17,7 +17,7 @@ const _: () = assert!(conformap::jobs::atlas::DEFAULT_MAX_AREA_SPREAD == 1.0);
 #[pyfunction]
 #[pyo3(signature = (V, F, cones = None, *, resolution = 1024, margin = 2.0,
     max_area_spread = 1.0, pack = "square",
-    scale = "uniform", seamless = false, polish = false, strict = false, max_memory = None))]
+    scale = "uniform", seamless = false, polish = None, strict = false, max_memory = None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity, non_snake_case)] // `V`, `F` as the stubs spell them
 pub fn atlas<'py>(
     py: Python<'py>,
@@ -30,7 +30,7 @@ pub fn atlas<'py>(
     pack: &str,
     scale: &str,
     seamless: bool,
-    polish: bool,
+    polish: Option<&Bound<'py, PyAny>>,
     strict: bool,
     max_memory: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(

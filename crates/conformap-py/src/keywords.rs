@@ -6,7 +6,7 @@
 //!
 //! The jobs read and write [`MEMORY_PATH`]; a batch replaces both paths by each input's.
 
-use conformap::jobs::atlas::{AtlasJob, ConeChoice, GivenCones, DEFAULT_MAX_AREA_SPREAD};
+use conformap::jobs::atlas::{AtlasJob, ConeChoice, GivenCones, Polish, DEFAULT_MAX_AREA_SPREAD};
 use conformap::jobs::disk::{DiskJob, FactorOrder, Method};
 use conformap::jobs::flatten::{FlattenJob, Interior};
 use conformap::jobs::global::{Conjugate, FormObjective, GlobalJob};
@@ -14,7 +14,7 @@ use conformap::jobs::sphere::{SphereJob, SphereMobius};
 use conformap::pipeline::{InputOptions, OutputOptions};
 use conformap::{BatchCommand, BatchTemplate, Choice};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::{PyBool, PyDict, PyString};
 
 use crate::arrays::MEMORY_PATH;
 use crate::errors::usage;
@@ -208,14 +208,40 @@ pub fn flatten_job(
     Ok(job)
 }
 
+/// The polish mode of keyword `polish` (see [`atlas_job`]).
+fn polish_mode(polish: Option<&Bound<'_, PyAny>>) -> PyResult<Polish> {
+    match polish {
+        None => Ok(Polish::Auto),
+        Some(p) if p.is_none() => Ok(Polish::Auto),
+        Some(p) if p.is_instance_of::<PyBool>() => Ok(if p.extract::<bool>()? {
+            Polish::Always
+        } else {
+            Polish::Never
+        }),
+        Some(p) => match p.extract::<String>().ok().as_deref() {
+            Some("auto") => Ok(Polish::Auto),
+            Some("always") => Ok(Polish::Always),
+            Some("never") => Ok(Polish::Never),
+            _ => {
+                let text = p.repr().map(|r| r.to_string()).unwrap_or_default();
+                Err(usage(format!(
+                    "polish must be \"auto\", \"always\", \"never\", True or False, got {text}"
+                )))
+            }
+        },
+    }
+}
+
 /// The `atlas` job of `atlas`'s keywords: `cones` an integer (placed), `"auto"` (as many
 /// as reach `max_area_spread`) or `(vertex, angle in degrees)` pairs (given, checked
 /// against the mesh as `--cones FILE`'s lines); `pack` `"square"` or `"none"`; `scale`
-/// `"uniform"` or `"per-chart"`; `seamless` as `--seamless`.
+/// `"uniform"` or `"per-chart"`; `seamless` as `--seamless`; `polish` `None` or `"auto"`
+/// (the default), `True` or `"always"`, `False` or `"never"`, as `--polish=WHEN`.
 ///
 /// # Errors
 /// `ConformapError` (usage) for a negative `cones` or `resolution`, another string than
-/// `"auto"`, pairs that are not `(integer ≥ 0, float)`, an unknown `pack` or `scale`.
+/// `"auto"`, pairs that are not `(integer ≥ 0, float)`, an unknown `pack`, `scale` or
+/// `polish`.
 #[allow(clippy::too_many_arguments)] // one per keyword
 pub fn atlas_job(
     cones: Option<&Bound<'_, PyAny>>,
@@ -225,7 +251,7 @@ pub fn atlas_job(
     pack: &str,
     scale: &str,
     seamless: bool,
-    polish: bool,
+    polish: Option<&Bound<'_, PyAny>>,
     strict: bool,
 ) -> PyResult<AtlasJob> {
     let (input, output) = io(strict);
@@ -259,7 +285,7 @@ pub fn atlas_job(
         }
     };
     job.seamless = seamless;
-    job.polish = polish;
+    job.polish = polish_mode(polish)?;
     job.per_chart_scale = match scale {
         "uniform" => false,
         "per-chart" => true,
@@ -444,7 +470,7 @@ pub fn template(
             &kw.text("pack", "square")?,
             &kw.text("scale", "uniform")?,
             kw.flag("seamless")?,
-            kw.flag("polish")?,
+            kw.get("polish")?.as_ref(),
             strict,
         )?),
     })

@@ -89,7 +89,7 @@ def test_atlas_seamless_matches_cli(tmp_path):
 
 def test_atlas_polish_matches_cli_and_lowers_the_distortion(tmp_path):
     V, F = conformap.read_mesh(FIXTURES / "spot.obj")
-    _, _, plain = conformap.atlas(V, F)
+    _, _, plain = conformap.atlas(V, F, polish=False)
     uv, F_uv, report = conformap.atlas(V, F, polish=True)
     code, cli, err = run_cli(["atlas", str(FIXTURES / "spot.obj"), "-o", str(tmp_path / "a.obj"), "--polish"], tmp_path)
     assert code == 0, err
@@ -98,10 +98,18 @@ def test_atlas_polish_matches_cli_and_lowers_the_distortion(tmp_path):
     before, after = a["polish_energy"]
     assert after < before
     assert plain["atlas"]["polish_energy"] is None
+    assert plain["atlas"]["polished_components"] == 0 and a["polished_components"] == 1
     assert a["area_spread"] < plain["atlas"]["area_spread"] - 0.03
     assert a["angle_mean_deg"] < plain["atlas"]["angle_mean_deg"]
     assert a["flipped"] == 0 and a["overlap"]["covered_twice"] == 0
     assert uv.min() >= 0.0 and uv.max() <= 1.0
+    # the default ("auto") polishes spot (its cone metric spreads 0.82), as "always" does
+    auto_uv, _, auto = conformap.atlas(V, F)
+    assert auto["atlas"]["polish"] == "auto" and auto["atlas"]["polished_components"] == 1
+    assert np.array_equal(auto_uv, uv)
+    assert conformap.atlas(V, F, polish="never")[2]["atlas"]["polish_energy"] is None
+    with pytest.raises(conformap.ConformapError, match="polish must be"):
+        conformap.atlas(V, F, polish="sometimes")
     # with seamless the seams keep their quarter turns
     _, _, both = conformap.atlas(V, F, polish=True, seamless=True)
     assert both["atlas"]["seam_rotation_error_max"] <= 1e-6

@@ -2,7 +2,7 @@
 //! job (crate `conformap`) does the work.
 
 use clap::{Args, ValueEnum};
-use conformap::jobs::atlas::{AtlasJob, ConeChoice, DEFAULT_MAX_AREA_SPREAD};
+use conformap::jobs::atlas::{AtlasJob, ConeChoice, Polish, DEFAULT_MAX_AREA_SPREAD};
 
 use crate::args::{InputArgs, OutputArgs};
 
@@ -50,11 +50,22 @@ pub struct AtlasArgs {
     /// translations); charts packed with quarter turns only. Costs area distortion.
     #[arg(long)]
     pub seamless: bool,
-    /// Polish every chart after it is flattened: one Gauss–Newton step on the area and
-    /// angle distortion with the seams held rigid (lower area spread and angle distortion,
-    /// one more factorization per chart; with --seamless the seams keep their quarter turns).
-    #[arg(long)]
-    pub polish: bool,
+    /// Which charts to polish after they are flattened: one Gauss–Newton step on the area
+    /// and angle distortion with the seams held rigid (lower area spread and angle
+    /// distortion, one more factorization per chart; with --seamless the seams keep their
+    /// quarter turns). `auto`: charts whose cone metric spreads 0.5 or more, on components
+    /// of up to 20,000 vertices (where it pays and costs little); `always` (bare
+    /// `--polish`): every chart with cones; `never`.
+    #[arg(
+        long,
+        value_enum,
+        value_name = "WHEN",
+        default_value = "auto",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "always"
+    )]
+    pub polish: PolishWhen,
 }
 
 /// `--pack`.
@@ -64,6 +75,17 @@ pub enum Pack {
     Square,
     /// Kept in their own coordinates.
     None,
+}
+
+/// `--polish`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PolishWhen {
+    /// Where it pays and costs little.
+    Auto,
+    /// Every chart with cones.
+    Always,
+    /// No chart.
+    Never,
 }
 
 /// `--scale`.
@@ -93,7 +115,11 @@ impl AtlasArgs {
         job.resolution = self.resolution;
         job.margin = self.margin;
         job.seamless = self.seamless;
-        job.polish = self.polish;
+        job.polish = match self.polish {
+            PolishWhen::Auto => Polish::Auto,
+            PolishWhen::Always => Polish::Always,
+            PolishWhen::Never => Polish::Never,
+        };
         job
     }
 }

@@ -5,6 +5,8 @@
 use rustc_hash::FxHashMap as HashMap;
 use std::path::{Path, PathBuf};
 
+/// Which charts are polished ([`AtlasJob::polish`]).
+pub use conformap_atlas::Polish;
 use conformap_atlas::{
     atlas_peak_bytes_with, build_atlas_with_cones, AtlasOptions, ChartScale, Layout, PackOptions,
 };
@@ -79,9 +81,9 @@ pub struct AtlasJob {
     /// of 90° plus a translation (genus ≥ 1: a holomorphic 1-form's layout, seams pure
     /// translations); charts packed with quarter turns only. Default: false.
     pub seamless: bool,
-    /// `--polish`: every chart's layout polished after it is flattened
-    /// ([`AtlasOptions::polish`]). Default: false.
-    pub polish: bool,
+    /// `--polish[=WHEN]`: which charts' layouts are polished after they are flattened
+    /// ([`AtlasOptions::polish`]). Default: [`Polish::Auto`].
+    pub polish: Polish,
 }
 
 impl AtlasJob {
@@ -98,7 +100,7 @@ impl AtlasJob {
             pack_none: false,
             per_chart_scale: false,
             seamless: false,
-            polish: false,
+            polish: Polish::Auto,
         }
     }
 
@@ -310,13 +312,17 @@ impl MapJob for AtlasJob {
                 r.seam_rotation_error_max, r.seam_rigid_residual_max
             ));
         }
-        match r.polish_energy {
-            Some([before, after]) if before > 0.0 => summary.push_str(&format!(
-                "; polished: distortion energy {:.0} % lower",
+        match (r.polish_energy, r.polish) {
+            (Some([before, after]), _) if before > 0.0 => summary.push_str(&format!(
+                "; polished {} of {} components: distortion energy {:.0} % lower",
+                r.polished_components,
+                r.components,
                 100.0 * (1.0 - after / before)
             )),
-            Some(_) => summary.push_str("; nothing polished (free boundaries kept as flattened)"),
-            None => {}
+            (None, Polish::Always) => {
+                summary.push_str("; nothing polished (free boundaries kept as flattened)")
+            }
+            _ => {}
         }
         let strict_violation = (!clean).then(|| {
             format!(
