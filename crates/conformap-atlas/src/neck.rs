@@ -260,7 +260,7 @@ fn candidates(piece: &Piece, lp: &[u32], count: usize, min_arc: f64) -> Vec<(usi
     }
     let stride = m.div_ceil(NECK_SAMPLES).max(1);
     let samples: Vec<usize> = (0..m).step_by(stride).collect();
-    let mut pairs = Vec::new();
+    let mut pairs = Vec::with_capacity(samples.len() * samples.len().saturating_sub(1) / 2);
     for (x, &i) in samples.iter().enumerate() {
         for &j in &samples[x + 1..] {
             let along = arc[j] - arc[i];
@@ -268,7 +268,8 @@ fn candidates(piece: &Piece, lp: &[u32], count: usize, min_arc: f64) -> Vec<(usi
             if short < min_arc * perimeter {
                 continue;
             }
-            pairs.push(((z[j] - z[i]).norm() / short, i, j));
+            // the squared ratio ranks as the ratio does, without a `hypot` call per pair
+            pairs.push(((z[j] - z[i]).norm_sqr() / (short * short), i, j));
         }
     }
     // narrowest first, ties by position (the order a stable sort of the generated pairs
@@ -322,10 +323,14 @@ impl Ord for Pair {
 
 /// Whether `p` lies inside the closed polygon `z` (winding number, non-zero).
 fn inside(z: &[Complex64], p: Complex64) -> bool {
-    let m = z.len();
+    let Some(&last) = z.last() else {
+        return false;
+    };
     let mut winding = 0i32;
-    for i in 0..m {
-        let (a, b) = (z[i], z[(i + 1) % m]);
+    // every edge (a, b) of the loop once, the closing one first (the count does not
+    // depend on the order)
+    let mut a = last;
+    for &b in z {
         let cross = (b.re - a.re) * (p.im - a.im) - (p.re - a.re) * (b.im - a.im);
         if a.im <= p.im {
             if b.im > p.im && cross > 0.0 {
@@ -334,6 +339,7 @@ fn inside(z: &[Complex64], p: Complex64) -> bool {
         } else if b.im <= p.im && cross < 0.0 {
             winding -= 1;
         }
+        a = b;
     }
     winding != 0
 }

@@ -27,8 +27,8 @@ pub(crate) struct Turned {
 impl Turned {
     /// `loops` (closed polylines of layout points) turned by `angle`.
     pub fn new(loops: &[Vec<[f64; 2]>], angle: f64) -> Self {
-        let mut points = Vec::new();
-        let mut loop_ends = Vec::new();
+        let mut points = Vec::with_capacity(loops.iter().map(Vec::len).sum());
+        let mut loop_ends = Vec::with_capacity(loops.len());
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut min_y, mut max_y) = (f64::INFINITY, f64::NEG_INFINITY);
         for lp in loops.iter().filter(|lp| !lp.is_empty()) {

@@ -140,7 +140,13 @@ fn spot_through_eight_cones_is_an_overlap_free_atlas() {
     assert!(plain > r["atlas"]["area_spread"].as_f64().expect("number") + 0.03);
     check_atlas(&n, &never, 5856);
     let always = d.join("always.obj");
-    conformap_ok(&["atlas", "--polish", s(&fixture("spot.obj")), "-o", s(&always)]);
+    conformap_ok(&[
+        "atlas",
+        "--polish",
+        s(&fixture("spot.obj")),
+        "-o",
+        s(&always),
+    ]);
     assert_eq!(
         std::fs::read(&always).expect("read"),
         std::fs::read(&out).expect("read")

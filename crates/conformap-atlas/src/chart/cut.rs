@@ -33,20 +33,28 @@ impl Graph {
     pub(crate) fn new(mesh: &TriMesh, edges: &EdgeIndex) -> Self {
         let n = mesh.num_vertices();
         let p = mesh.positions();
-        let mut rows: Vec<Vec<(u32, u32, f64)>> = vec![Vec::new(); n];
+        // counted, then scattered: each vertex's edges in the order of the edge index
+        let ends = |h: u32| mesh.halfedge_vertices(h as usize);
+        let mut offsets = vec![0usize; n + 1];
+        for &h in &edges.halfedge {
+            let (a, b) = ends(h);
+            offsets[a as usize + 1] += 1;
+            offsets[b as usize + 1] += 1;
+        }
+        for v in 0..n {
+            offsets[v + 1] += offsets[v];
+        }
+        let mut fill = offsets.clone();
+        let mut out = vec![(0u32, 0u32, 0.0f64); offsets[n]];
         for (e, &h) in edges.halfedge.iter().enumerate() {
-            let (a, b) = mesh.halfedge_vertices(h as usize);
+            let (a, b) = ends(h);
             let (pa, pb) = (p[a as usize], p[b as usize]);
             let len = ((pa[0] - pb[0]).powi(2) + (pa[1] - pb[1]).powi(2) + (pa[2] - pb[2]).powi(2))
                 .sqrt();
-            rows[a as usize].push((b, e as u32, len));
-            rows[b as usize].push((a, e as u32, len));
-        }
-        let mut offsets = vec![0usize];
-        let mut out = Vec::new();
-        for r in rows {
-            out.extend(r);
-            offsets.push(out.len());
+            out[fill[a as usize]] = (b, e as u32, len);
+            fill[a as usize] += 1;
+            out[fill[b as usize]] = (a, e as u32, len);
+            fill[b as usize] += 1;
         }
         Self { offsets, out }
     }
