@@ -231,7 +231,8 @@ pub struct AtlasReport {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
 #[non_exhaustive]
 pub struct AtlasTimings {
-    /// The cone metrics' factorizations and the cone placements.
+    /// The cone metrics' factorizations and the cone placements (on genus ≥ 1 with the
+    /// handle cut, found beside the metric's weights).
     pub cones: f64,
     /// The rest of the charting: cut graphs, cuts, flattenings, fold repairs.
     pub charts: f64,

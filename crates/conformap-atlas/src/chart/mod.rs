@@ -150,38 +150,39 @@ pub(crate) fn chart_closed_by(
 ) -> Result<Chart, AtlasError> {
     // a surface with boundary comes here with genus 0: a planar domain needs no cut
     let handles = mesh.boundary_loops().is_empty() && mesh.genus() != Some(0);
-    let (edges, on_cut) = if handles {
-        let basis = homology_basis(mesh, None).map_err(|e| AtlasError::Mesh(e.to_string()))?;
-        let on_cut = cut_graph(mesh, &basis);
-        (basis.edges, on_cut)
-    } else {
-        let edges = EdgeIndex::new(mesh);
-        let none = vec![false; edges.len()];
-        (edges, none)
-    };
-    let edges = &edges;
     let no_cones = |metric: &ConeMetric| place_cones(metric, 0, &ConeOptions::DEFAULT);
     let place = match place {
         Some(place) => place,
         None if mesh.boundary_loops().is_empty() => &no_cones,
         None => {
             // boundary first flattening's free boundary: no cone metric to factor
-            return flatten_cut(mesh, edges, on_cut, ConeSet::none(mesh.num_vertices()), 0.0);
+            let edges = EdgeIndex::new(mesh);
+            let none = vec![false; edges.len()];
+            return flatten_cut(mesh, &edges, none, ConeSet::none(mesh.num_vertices()), 0.0);
         }
     };
     let start = std::time::Instant::now();
-    let metric = if !handles {
-        ConeMetric::new(mesh)?
-    } else {
-        let mut pinned = Vec::new();
-        for (e, &c) in on_cut.iter().enumerate() {
-            if c {
-                let (a, b) = mesh.halfedge_vertices(edges.halfedge[e] as usize);
-                pinned.extend([a, b]);
+    let (metric, (edges, on_cut)) = if handles {
+        // the handle cut (tree–cotree) on one core beside the metric's weights, curvature
+        // and rings on the other; the cut's vertices are then pinned
+        ConeMetric::with_pinned_from(mesh, || {
+            let basis = homology_basis(mesh, None).map_err(|e| AtlasError::Mesh(e.to_string()))?;
+            let on_cut = cut_graph(mesh, &basis);
+            let mut pinned = Vec::new();
+            for (e, &c) in on_cut.iter().enumerate() {
+                if c {
+                    let (a, b) = mesh.halfedge_vertices(basis.edges.halfedge[e] as usize);
+                    pinned.extend([a, b]);
+                }
             }
-        }
-        ConeMetric::with_pinned(mesh, &pinned)?
+            Ok((pinned, (basis.edges, on_cut)))
+        })?
+    } else {
+        let edges = EdgeIndex::new(mesh);
+        let none = vec![false; edges.len()];
+        (ConeMetric::new(mesh)?, (edges, none))
     };
+    let edges = &edges;
     let set = place(&metric);
     let cones_ms = start.elapsed().as_secs_f64() * 1e3;
     let handle_length = cut_length(mesh, edges, &on_cut);

@@ -17,7 +17,7 @@
 use conformap_mesh::TriMesh;
 use conformap_operators::{
     corner_angles, cotan_laplacian, interior_pattern, Cholesky, CholeskyOptions, LaplacianBlocks,
-    OperatorError, Partition,
+    OperatorError, Partition, SymbolicAnalysis,
 };
 
 use crate::error::AtlasError;
@@ -73,6 +73,45 @@ impl ConeMetric {
         Self::build(mesh, &all, false)
     }
 
+    /// [`ConeMetric::with_pinned`] with the pinned vertices computed by `pinned` on one
+    /// core while the other assembles what does not depend on them (the Laplacian's
+    /// weights, the curvature, the rings, the area): a handle cut's tree–cotree search
+    /// beside them. Returns `pinned`'s other result too. The same metric as
+    /// `with_pinned` on the same vertices.
+    ///
+    /// # Errors
+    /// As [`ConeMetric::new`], or `pinned`'s own error.
+    pub(crate) fn with_pinned_from<R: Send>(
+        mesh: &TriMesh,
+        pinned: impl FnOnce() -> Result<(Vec<u32>, R), AtlasError> + Send,
+    ) -> Result<(Self, R), AtlasError> {
+        let (found, (laplacian, (curvature, rings, area))) = rayon::join(pinned, || {
+            rayon::join(
+                || cotan_laplacian(mesh),
+                || {
+                    (
+                        angle_defects(mesh),
+                        one_rings(mesh),
+                        conformap_operators::surface_area(mesh),
+                    )
+                },
+            )
+        });
+        let (pinned, other) = found?;
+        let mut all: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
+        all.extend_from_slice(&pinned);
+        all.sort_unstable();
+        all.dedup();
+        let part = Partition::new(mesh.num_vertices(), &all);
+        let options = CholeskyOptions::DEFAULT;
+        let (blocks, analysis) = rayon::join(
+            || LaplacianBlocks::new(&laplacian, &part),
+            || Cholesky::analyse_with(&interior_pattern(mesh, &part), &options),
+        );
+        let metric = Self::assemble(mesh, part, blocks, analysis, curvature, rings, area, false)?;
+        Ok((metric, other))
+    }
+
     fn build(mesh: &TriMesh, pinned: &[u32], closed: bool) -> Result<Self, AtlasError> {
         let n = mesh.num_vertices();
         let part = Partition::new(n, pinned);
@@ -93,6 +132,32 @@ impl ConeMetric {
                 (analysis, rest)
             },
         );
+        Self::assemble(
+            mesh,
+            part,
+            blocks,
+            analysis,
+            curvature,
+            (ring_start, ring),
+            area,
+            closed,
+        )
+    }
+
+    /// The metric from its parts: the Laplacian's blocks factored (on `analysis` of their
+    /// pattern), `u_K` solved.
+    #[allow(clippy::too_many_arguments)] // the parts computed side by side
+    fn assemble(
+        mesh: &TriMesh,
+        part: Partition,
+        blocks: LaplacianBlocks,
+        analysis: Result<SymbolicAnalysis, OperatorError>,
+        curvature: Vec<f64>,
+        (ring_start, ring): (Vec<usize>, Vec<u32>),
+        area: f64,
+        closed: bool,
+    ) -> Result<Self, AtlasError> {
+        let options = CholeskyOptions::DEFAULT;
         let chol = match analysis.and_then(|a| a.factor(&blocks.ii)) {
             // not expected (the pattern is the same connectivity's), but then the
             // analysis is redone on the matrix itself
