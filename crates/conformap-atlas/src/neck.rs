@@ -126,77 +126,25 @@ pub(crate) fn cut_necks(
                 r.size[0].max(r.size[1]) * packing.scale >= NECK_MIN_SPAN
             })
             .collect();
+        if large.is_empty() {
+            break;
+        }
+        // every large piece searched side by side (each search reads the charts and the
+        // packing as they are), the first one in order that pays is cut: what the pieces
+        // searched one after another, stopping at the first that pays, would give
+        let (_, loops) = outlines(charts);
+        let uncut = Outlined::new(loops, pack);
+        let second = round == 0 && total * packing.scale * packing.scale < NECK_MORE_BELOW;
+        let found: Vec<Option<(Packing, Vec<usize>)>> = large
+            .par_iter()
+            .map(|&(c, k)| {
+                let slot = index_of(charts, c, k);
+                search_piece(&charts[c].pieces[k], slot, &uncut, &packing, second, pack)
+            })
+            .collect();
         let mut improved = false;
-        for (c, k) in large {
+        for (&(c, k), best) in large.iter().zip(found) {
             let piece = &charts[c].pieces[k];
-            let lp = match piece.mesh.boundary_loops() {
-                [lp] => lp.clone(),
-                _ => continue,
-            };
-            let at = |v: u32| [piece.uv[v as usize].re, piece.uv[v as usize].im];
-            let mut on_loop = vec![false; piece.mesh.num_vertices()];
-            lp.iter().for_each(|&v| on_loop[v as usize] = true);
-            // each candidate judged by its parts' outlines (the loop's two arcs closed by
-            // the path), the parts built for the best one only
-            let graph = PathGraph::new(&piece.mesh);
-            let first_bar = packing.scale * (1.0 + NECK_GAIN).sqrt();
-            // the other charts' outlines and rectangles, shared by every trial
-            let (_, loops) = outlines(charts);
-            let uncut = Outlined::new(loops, pack);
-            let slot = index_of(charts, c, k);
-            // each candidate packed on its own core (they are independent), then taken in
-            // order: a trial is kept when it beats the bar and every trial kept before it
-            let judge = |pairs: &[(usize, usize)]| {
-                let trials: Vec<Option<(Packing, Vec<usize>)>> = pairs
-                    .par_iter()
-                    .map(|&(i, j)| {
-                        let path = shortest_path(&piece.mesh, &graph, lp[i], lp[j])?;
-                        let inner: Vec<u32> = path[..path.len() - 1]
-                            .iter()
-                            .map(|&h| piece.mesh.halfedge_vertices(h).1)
-                            .collect();
-                        if inner.iter().any(|&v| on_loop[v as usize]) {
-                            return None;
-                        }
-                        let m = lp.len();
-                        let first: Vec<[f64; 2]> = (i..=j)
-                            .map(|x| at(lp[x]))
-                            .chain(inner.iter().rev().map(|&v| at(v)))
-                            .collect();
-                        let second: Vec<[f64; 2]> = (j..=i + m)
-                            .map(|x| at(lp[x % m]))
-                            .chain(inner.iter().map(|&v| at(v)))
-                            .collect();
-                        let parts = uncut.split(slot, vec![vec![first], vec![second]], pack);
-                        // one packing at the bar first: most cuts do not reach it
-                        if !fits_at(&parts, first_bar, pack) {
-                            return None;
-                        }
-                        let trial = trial_pack(&parts, first_bar, pack)?;
-                        Some((trial, path))
-                    })
-                    .collect();
-                let mut best: Option<(Packing, Vec<usize>)> = None;
-                for (trial, path) in trials.into_iter().flatten() {
-                    let bar = best.as_ref().map_or(first_bar, |b| b.0.scale);
-                    if trial.scale > bar {
-                        best = Some((trial, path));
-                    }
-                }
-                best
-            };
-            let first = candidates(piece, &lp, NECK_CANDIDATES, NECK_MIN_ARC);
-            let best = judge(&first).or_else(|| {
-                if round > 0 || total * packing.scale * packing.scale >= NECK_MORE_BELOW {
-                    return None;
-                }
-                let more: Vec<(usize, usize)> =
-                    candidates(piece, &lp, NECK_MORE_CANDIDATES, NECK_MORE_MIN_ARC)
-                        .into_iter()
-                        .filter(|p| !first.contains(p))
-                        .collect();
-                judge(&more)
-            });
             let Some((trial, path)) = best else {
                 continue;
             };
@@ -223,6 +171,84 @@ pub(crate) fn cut_necks(
         packing = pack_outlined(&points, &loops, pack)?;
     }
     Ok(packing)
+}
+
+/// The best neck cut of `piece` (at `slot` among `uncut`'s charts, a disk with one
+/// boundary loop) by its first [`NECK_CANDIDATES`] candidates, then, when `second`, its
+/// [`NECK_MORE_CANDIDATES`] narrower ones: the trial packing and the cut's half-edges;
+/// `None` when no candidate beats `packing`'s scale by [`NECK_GAIN`].
+fn search_piece(
+    piece: &Piece,
+    slot: usize,
+    uncut: &Outlined,
+    packing: &Packing,
+    second: bool,
+    pack: &PackOptions,
+) -> Option<(Packing, Vec<usize>)> {
+    let lp = match piece.mesh.boundary_loops() {
+        [lp] => lp.clone(),
+        _ => return None,
+    };
+    let at = |v: u32| [piece.uv[v as usize].re, piece.uv[v as usize].im];
+    let mut on_loop = vec![false; piece.mesh.num_vertices()];
+    lp.iter().for_each(|&v| on_loop[v as usize] = true);
+    // each candidate judged by its parts' outlines (the loop's two arcs closed by
+    // the path), the parts built for the best one only
+    let graph = PathGraph::new(&piece.mesh);
+    let first_bar = packing.scale * (1.0 + NECK_GAIN).sqrt();
+    // each candidate packed on its own core (they are independent), then taken in
+    // order: a trial is kept when it beats the bar and every trial kept before it
+    let judge = |pairs: &[(usize, usize)]| {
+        let trials: Vec<Option<(Packing, Vec<usize>)>> = pairs
+            .par_iter()
+            .map(|&(i, j)| {
+                let path = shortest_path(&piece.mesh, &graph, lp[i], lp[j])?;
+                let inner: Vec<u32> = path[..path.len() - 1]
+                    .iter()
+                    .map(|&h| piece.mesh.halfedge_vertices(h).1)
+                    .collect();
+                if inner.iter().any(|&v| on_loop[v as usize]) {
+                    return None;
+                }
+                let m = lp.len();
+                let first: Vec<[f64; 2]> = (i..=j)
+                    .map(|x| at(lp[x]))
+                    .chain(inner.iter().rev().map(|&v| at(v)))
+                    .collect();
+                let second: Vec<[f64; 2]> = (j..=i + m)
+                    .map(|x| at(lp[x % m]))
+                    .chain(inner.iter().map(|&v| at(v)))
+                    .collect();
+                let parts = uncut.split(slot, vec![vec![first], vec![second]], pack);
+                // one packing at the bar first: most cuts do not reach it
+                if !fits_at(&parts, first_bar, pack) {
+                    return None;
+                }
+                let trial = trial_pack(&parts, first_bar, pack)?;
+                Some((trial, path))
+            })
+            .collect();
+        let mut best: Option<(Packing, Vec<usize>)> = None;
+        for (trial, path) in trials.into_iter().flatten() {
+            let bar = best.as_ref().map_or(first_bar, |b| b.0.scale);
+            if trial.scale > bar {
+                best = Some((trial, path));
+            }
+        }
+        best
+    };
+    let first = candidates(piece, &lp, NECK_CANDIDATES, NECK_MIN_ARC);
+    judge(&first).or_else(|| {
+        if !second {
+            return None;
+        }
+        let more: Vec<(usize, usize)> =
+            candidates(piece, &lp, NECK_MORE_CANDIDATES, NECK_MORE_MIN_ARC)
+                .into_iter()
+                .filter(|p| !first.contains(p))
+                .collect();
+        judge(&more)
+    })
 }
 
 /// Position of piece `k` of component `c` in the flat list of pieces.

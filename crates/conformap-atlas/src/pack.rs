@@ -2,6 +2,7 @@
 //! turned to its smallest bounding rectangle, a margin in texels around each, the largest
 //! scale at which a skyline packer fits them all.
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::AtlasError;
@@ -192,16 +193,22 @@ pub fn pack_outlined(
             }
         })
         .collect();
-    let mut best: Option<(Layout, Vec<usize>, &[BoundingRect])> = None;
-    for rects in [&area_rects[..], &square_rects[..], &mixed[..]] {
-        for key in ORDERS {
+    // the twelve searches on all cores, the best taken in their order (the first of equals)
+    let combos: Vec<(&[BoundingRect], SortKey)> = [&area_rects[..], &square_rects[..], &mixed[..]]
+        .into_iter()
+        .flat_map(|rects| ORDERS.map(|key| (rects, key)))
+        .collect();
+    let searched: Vec<Option<RectLayout>> = combos
+        .par_iter()
+        .map(|&(rects, key)| {
             let order = order_by(rects, key);
-            let Some(layout) = largest_scale(rects, &order, options) else {
-                continue;
-            };
-            if best.as_ref().is_none_or(|b| layout.0 > b.0 .0) {
-                best = Some((layout, order, rects));
-            }
+            largest_scale(rects, &order, options).map(|layout| (layout, order, rects))
+        })
+        .collect();
+    let mut best: Option<RectLayout> = None;
+    for found in searched.into_iter().flatten() {
+        if best.as_ref().is_none_or(|b| found.0 .0 > b.0 .0) {
+            best = Some(found);
         }
     }
     let ((s, spots, height), order, rects) = best.ok_or(too_many)?;
@@ -468,9 +475,15 @@ pub(crate) fn by_outlines(
 /// A packing at one scale: the scale, the spots (in packing order) and the height used.
 type Layout = (f64, Vec<skyline::Spot>, f64);
 
+/// A rectangle packer's sort key (an entry of [`ORDERS`]).
+type SortKey = fn(&BoundingRect) -> [f64; 2];
+
+/// A rectangle packing: its layout, the order packed and the rectangles turned as packed.
+type RectLayout<'a> = (Layout, Vec<usize>, &'a [BoundingRect]);
+
 /// Orders the skyline packer is tried with: tallest first, largest area first, longest
 /// side first, widest first (ties by the next size, then by index: deterministic).
-const ORDERS: [fn(&BoundingRect) -> [f64; 2]; 4] = [
+const ORDERS: [SortKey; 4] = [
     |r| [r.size[1], r.size[0]],
     |r| [r.size[0] * r.size[1], r.size[1]],
     |r| [r.size[0].max(r.size[1]), r.size[0].min(r.size[1])],
