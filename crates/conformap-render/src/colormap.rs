@@ -4,6 +4,21 @@
 /// Colour of flipped (folded) and degenerate faces: magenta, outside both colour maps.
 pub const FLAG_COLOR: [f32; 3] = [1.0, 0.0, 1.0];
 
+/// Colours of [`crate::ColorBy::Chart`]: 10 light, distinct hues (Tableau-like, lightened
+/// so the shading and the mesh edges stay visible), none of them the flag colour.
+pub const CHART_COLORS: [[f32; 3]; 10] = [
+    [0.45, 0.62, 0.85],
+    [1.00, 0.65, 0.35],
+    [0.50, 0.80, 0.45],
+    [0.95, 0.45, 0.45],
+    [0.70, 0.58, 0.85],
+    [0.72, 0.55, 0.45],
+    [0.95, 0.65, 0.85],
+    [0.65, 0.65, 0.65],
+    [0.85, 0.85, 0.40],
+    [0.40, 0.85, 0.85],
+];
+
 /// Sequential map (a viridis-like ramp, dark purple → blue → green → yellow), 9 stops.
 const SEQUENTIAL: [[f32; 3]; 9] = [
     [0.267, 0.005, 0.329],

@@ -203,9 +203,96 @@ fn quantile(values: &mut [f64], q: f64) -> f64 {
     *v
 }
 
+/// The charts of the map `coords` of `mesh`: a label per face (0 for the chart of face 0,
+/// then in order of first face) and their number. Two faces sharing an edge are in one
+/// chart when each end of the edge has the same image in both (exactly: a seamed map
+/// written with one texture coordinate per chart vertex reads back equal); a per-vertex
+/// map is one chart per connected component.
+pub fn chart_labels(mesh: &TriMesh, coords: &MapCoords<'_>) -> (Vec<u32>, usize) {
+    let n = mesh.num_faces();
+    let faces = mesh.faces();
+    let opposite = mesh.opposite_halfedges();
+    let mut label = vec![u32::MAX; n];
+    let mut count = 0usize;
+    let mut stack = Vec::new();
+    for seed in 0..n {
+        if label[seed] != u32::MAX {
+            continue;
+        }
+        label[seed] = count as u32;
+        stack.push(seed);
+        while let Some(f) = stack.pop() {
+            let here = coords.face(mesh, f);
+            for k in 0..3 {
+                let o = opposite[3 * f + k];
+                if o == conformap_mesh::NO_HALFEDGE {
+                    continue;
+                }
+                let g = o as usize / 3;
+                if label[g] != u32::MAX {
+                    continue;
+                }
+                // the edge's two ends, each with its image in f and in g
+                let (a, b) = mesh.halfedge_vertices(3 * f + k);
+                let there = coords.face(mesh, g);
+                let at = |t: usize, v: u32| faces[t].iter().position(|&w| w == v);
+                let same = |v: u32| match (at(f, v), at(g, v)) {
+                    (Some(x), Some(y)) => here[x] == there[y],
+                    _ => false,
+                };
+                if same(a) && same(b) {
+                    label[g] = count as u32;
+                    stack.push(g);
+                }
+            }
+        }
+        count += 1;
+    }
+    (label, count)
+}
+
+/// One colour per face from its chart ([`chart_labels`]): the charts taken largest first,
+/// the `i`-th given colour `i` of [`crate::colormap::CHART_COLORS`] (cycling), or the next
+/// one that none of its neighbours across a seam has.
+pub(crate) fn chart_colors(mesh: &TriMesh, coords: &MapCoords<'_>) -> Vec<[f32; 3]> {
+    use crate::colormap::CHART_COLORS;
+    let (label, count) = chart_labels(mesh, coords);
+    let opposite = mesh.opposite_halfedges();
+    let mut size = vec![0usize; count];
+    let mut next: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (h, &o) in opposite.iter().enumerate() {
+        size[label[h / 3] as usize] += usize::from(h % 3 == 0);
+        if o == conformap_mesh::NO_HALFEDGE {
+            continue;
+        }
+        let (a, b) = (label[h / 3], label[o as usize / 3]);
+        if a != b {
+            next[a as usize].push(b);
+        }
+    }
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by_key(|&c| (std::cmp::Reverse(size[c]), c));
+    let mut color = vec![usize::MAX; count];
+    for (rank, &c) in order.iter().enumerate() {
+        let taken: Vec<usize> = next[c].iter().map(|&d| color[d as usize]).collect();
+        // the next colour in turn (charts apart in the map still differ), passed over
+        // while a neighbour across a seam has it
+        let m = CHART_COLORS.len();
+        color[c] = (0..m)
+            .map(|k| (rank + k) % m)
+            .find(|k| !taken.contains(k))
+            .unwrap_or(rank % m);
+    }
+    label
+        .iter()
+        .map(|&l| CHART_COLORS[color[l as usize]])
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::param::UvValues;
 
     #[test]
     fn quantile_nearest_rank() {
@@ -213,5 +300,41 @@ mod tests {
         assert_eq!(quantile(&mut v, 0.99), 99.0);
         assert_eq!(quantile(&mut v, 1.0), 100.0);
         assert_eq!(quantile(&mut [], 0.5), 0.0);
+    }
+    /// Two triangles on the unit square, as a per-corner map: `apart` moves the second's
+    /// images off the first's along their shared edge.
+    fn square(apart: f64) -> (TriMesh, Vec<[Complex64; 3]>) {
+        let p = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let f = vec![[0, 1, 2], [0, 2, 3]];
+        let mesh = TriMesh::try_new(p.clone(), f.clone()).expect("mesh");
+        let z = |v: u32, d: f64| Complex64::new(p[v as usize][0] + d, p[v as usize][1]);
+        let uv = vec![f[0].map(|v| z(v, 0.0)), f[1].map(|v| z(v, apart))];
+        (mesh, uv)
+    }
+
+    #[test]
+    fn charts_join_across_edges_whose_ends_agree_only() {
+        let (mesh, joined) = square(0.0);
+        let map = MapCoords::Planar(UvValues::PerCorner(&joined));
+        assert_eq!(chart_labels(&mesh, &map), (vec![0, 0], 1));
+        let (mesh, seam) = square(2.0);
+        let map = MapCoords::Planar(UvValues::PerCorner(&seam));
+        assert_eq!(chart_labels(&mesh, &map), (vec![0, 1], 2));
+        // two charts across a seam get different colours
+        let colors = chart_colors(&mesh, &map);
+        assert_ne!(colors[0], colors[1]);
+        // a per-vertex map is one chart
+        let z: Vec<Complex64> = mesh
+            .positions()
+            .iter()
+            .map(|q| Complex64::new(q[0], q[1]))
+            .collect();
+        let map = MapCoords::Planar(UvValues::PerVertex(&z));
+        assert_eq!(chart_labels(&mesh, &map).1, 1);
     }
 }

@@ -74,7 +74,7 @@ mod view;
 pub use camera::{principal_axes, Camera, Viewport, FIT_MARGIN};
 pub use colormap::FLAG_COLOR;
 pub use error::RenderError;
-pub use faces::COLOR_RANGE_QUANTILE;
+pub use faces::{chart_labels, COLOR_RANGE_QUANTILE};
 pub use image::Image;
 pub use options::{ColorBy, RenderOptions, View};
 pub use param::{MapCoords, UvValues, SPHERE_RADIUS_TOL};

@@ -31,6 +31,10 @@ pub enum ColorBy {
     Beltrami,
     /// Per-face log area ratio (diverging colours, symmetric around 0).
     Area,
+    /// One colour per chart of a seamed map (faces joined across every edge whose two
+    /// ends have the same images on both sides), neighbouring charts in different colours
+    /// ([`crate::chart_labels`]); no colour bar.
+    Chart,
 }
 
 impl ColorBy {

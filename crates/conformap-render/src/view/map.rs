@@ -9,9 +9,9 @@ use super::Canvas;
 use super::{clamp_barycentric, colorbar, interpolate, FaceTex, TexMap};
 use crate::camera::Camera;
 use crate::error::RenderError;
-use crate::faces::{distortions, face_field};
+use crate::faces::{chart_colors, distortions, face_field};
 use crate::image::Image;
-use crate::options::RenderOptions;
+use crate::options::{ColorBy, RenderOptions};
 use crate::param::{Domain, MapCoords};
 use crate::raster::{self, centroid, Barycentric};
 use crate::textures::texture;
@@ -244,8 +244,13 @@ fn draw_quantity(
     coords: &MapCoords<'_>,
     options: &RenderOptions,
 ) -> Image {
-    let field = face_field(&distortions(mesh, coords), options.color);
-    let colors = field.colors();
+    // charts: their colours, no bar; a distortion: its colours and its bar
+    let (colors, field) = if options.color == ColorBy::Chart {
+        (chart_colors(mesh, coords), None)
+    } else {
+        let field = face_field(&distortions(mesh, coords), options.color);
+        (field.colors(), Some(field))
+    };
     let shade = |face: &MapFace, points: &[[f64; 2]]| {
         let f = face.face as usize;
         let c = colors[f].map(|c| c * scene.light_at(face, points));
@@ -269,7 +274,9 @@ fn draw_quantity(
         |f| scene.prepare(f),
         shade,
     );
-    colorbar::draw(&mut image, &field);
+    if let Some(field) = &field {
+        colorbar::draw(&mut image, field);
+    }
     image
 }
 

@@ -8,9 +8,9 @@ use super::Canvas;
 use super::{clamp_barycentric, colorbar, FaceTex, TexMap};
 use crate::camera::Camera;
 use crate::error::RenderError;
-use crate::faces::{distortions, face_field};
+use crate::faces::{chart_colors, distortions, face_field};
 use crate::image::Image;
-use crate::options::RenderOptions;
+use crate::options::{ColorBy, RenderOptions};
 use crate::param::MapCoords;
 use crate::raster::{self, centroid, Barycentric};
 use crate::textures::texture;
@@ -155,14 +155,21 @@ pub(crate) fn render_surface(
     // the light varies slowly: it is evaluated once per face and pixel (at the centre of
     // the face's samples there), the colour at every sample
     let image = if quantity {
-        let field = face_field(&distortions(mesh, coords), options.color);
-        let colors = field.colors();
+        // charts: their colours, no bar; a distortion: its colours and its bar
+        let (colors, field) = if options.color == ColorBy::Chart {
+            (chart_colors(mesh, coords), None)
+        } else {
+            let field = face_field(&distortions(mesh, coords), options.color);
+            (field.colors(), Some(field))
+        };
         let shade = |lit: &LitFace, points: &[[f64; 2]]| {
             let i = lighting(lit, bary(&lit.frame, centroid(points))) * points.len() as f32;
             colors[lit.face as usize].map(|c| c * i)
         };
         let mut image = raster::draw(size, ss, &screen, n, tri, bg, prepare_lit, shade);
-        colorbar::draw(&mut image, &field);
+        if let Some(field) = &field {
+            colorbar::draw(&mut image, field);
+        }
         image
     } else {
         let tex = TexMap::new(mesh, coords, options.texture_cells);

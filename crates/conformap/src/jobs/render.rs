@@ -47,6 +47,9 @@ crate::choice! {
         Beltrami = "beltrami",
         /// Per-face log area ratio (diverging colours around 0).
         Area = "area",
+        /// One colour per chart of a seamed map (an atlas, a 1-form layout), neighbouring
+        /// charts in different colours.
+        Chart = "chart",
     }
 }
 
@@ -151,6 +154,7 @@ impl RenderJob {
             Some(RenderColor::Angle) => ColorBy::Angle,
             Some(RenderColor::Beltrami) => ColorBy::Beltrami,
             Some(RenderColor::Area) => ColorBy::Area,
+            Some(RenderColor::Chart) => ColorBy::Chart,
         };
         RenderOptions::DEFAULT
             .with_size(self.size)
