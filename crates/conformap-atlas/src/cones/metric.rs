@@ -305,48 +305,11 @@ impl ConeMetric {
     }
 }
 
-/// The one-rings of `mesh` as compressed rows (sorted, no repeats).
+/// The one-rings of `mesh` as compressed rows (sorted, no repeats): its vertex adjacency
+/// (each edge once, so no repeats on a valid mesh).
 fn one_rings(mesh: &TriMesh) -> (Vec<usize>, Vec<u32>) {
-    // each face names every vertex's two neighbours in it: counted, scattered into one
-    // array, then each vertex's run sorted and its repeats dropped in place
-    let n = mesh.num_vertices();
-    let mut start = vec![0usize; n + 1];
-    for t in mesh.faces() {
-        for &v in t {
-            start[v as usize + 1] += 2;
-        }
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut ring = vec![0u32; start[n]];
-    for t in mesh.faces() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            ring[fill[a as usize]] = b;
-            fill[a as usize] += 1;
-            ring[fill[b as usize]] = a;
-            fill[b as usize] += 1;
-        }
-    }
-    let mut kept = 0;
-    for v in 0..n {
-        let (from, to) = (start[v], start[v + 1]);
-        ring[from..to].sort_unstable();
-        start[v] = kept;
-        let mut last = None;
-        for i in from..to {
-            if last != Some(ring[i]) {
-                last = Some(ring[i]);
-                ring[kept] = ring[i];
-                kept += 1;
-            }
-        }
-    }
-    start[n] = kept;
-    ring.truncate(kept);
-    (start, ring)
+    let adjacency = mesh.vertex_adjacency();
+    (adjacency.offsets, adjacency.neighbors)
 }
 
 /// Standard deviation (population) of `x`.
