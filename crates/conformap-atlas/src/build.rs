@@ -35,7 +35,7 @@ pub const POLISH_AUTO_SPREAD: f64 = 0.5;
 
 /// [`Polish::Auto`] polishes charts of components of at most this many vertices: 20,000.
 /// The step's factorization (twice the vertices, 2 × 2 blocks) grows faster than the rest
-/// of the atlas: spot (2,930 vertices) +15–20 % of the whole run, armadillo (43,243)
+/// of the atlas: spot (2,930 vertices) +15–25 % of the whole run, armadillo (43,243)
 /// +44 %, kitten_53k +65 %. Larger surfaces are polished with [`Polish::Always`].
 pub const POLISH_AUTO_VERTICES: usize = 20_000;
 
@@ -64,15 +64,6 @@ impl Polish {
             Self::Never => false,
             Self::Always => true,
             Self::Auto => spread >= POLISH_AUTO_SPREAD && vertices <= POLISH_AUTO_VERTICES,
-        }
-    }
-
-    /// The mode's name, as the CLI spells it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Never => "never",
-            Self::Auto => "auto",
-            Self::Always => "always",
         }
     }
 }
@@ -105,7 +96,7 @@ pub struct AtlasOptions {
     /// area spread and the angle distortion on every closed mesh of the atlas table (spot
     /// 0.835 → 0.790 and 2.44° → 2.31°, armadillo 1.86 → 1.72 and 1.60° → 1.45°; eightsim's
     /// 173 vertices spread 0.164 → 0.173 for 3.67° → 3.43°), for one factorization of twice
-    /// the chart's vertices (whole run: spot +15–20 %, kitten_53k +65 %); the charts, and
+    /// the chart's vertices (whole run: spot +15–25 %, kitten_53k +65 %); the charts, and
     /// so the packing, change with it (spot 0.66 → 0.67, a neck cut the plain layout does
     /// not take). With [`Self::seamless`] the seams keep their quarter turns (spot: spread
     /// 0.948 → 0.902, seams within 4.3e-13 rad of a quarter turn). A component with

@@ -66,11 +66,7 @@ impl ConeMetric {
     /// # Errors
     /// As [`ConeMetric::new`].
     pub fn with_pinned(mesh: &TriMesh, pinned: &[u32]) -> Result<Self, AtlasError> {
-        let mut all: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
-        all.extend_from_slice(pinned);
-        all.sort_unstable();
-        all.dedup();
-        Self::build(mesh, &all, false)
+        Self::build(mesh, &with_boundary(mesh, pinned), false)
     }
 
     /// [`ConeMetric::with_pinned`] with the pinned vertices computed by `pinned` on one
@@ -98,11 +94,7 @@ impl ConeMetric {
             )
         });
         let (pinned, other) = found?;
-        let mut all: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
-        all.extend_from_slice(&pinned);
-        all.sort_unstable();
-        all.dedup();
-        let part = Partition::new(mesh.num_vertices(), &all);
+        let part = Partition::new(mesh.num_vertices(), &with_boundary(mesh, &pinned));
         let options = CholeskyOptions::DEFAULT;
         let (blocks, analysis) = rayon::join(
             || LaplacianBlocks::new(&laplacian, &part),
@@ -303,6 +295,15 @@ impl ConeMetric {
     pub fn area_spread(&self, u: &[f64]) -> f64 {
         sd(&self.face_log_scale(u))
     }
+}
+
+/// The boundary vertices of `mesh` and `pinned`, sorted, each once.
+fn with_boundary(mesh: &TriMesh, pinned: &[u32]) -> Vec<u32> {
+    let mut all: Vec<u32> = mesh.boundary_loops().iter().flatten().copied().collect();
+    all.extend_from_slice(pinned);
+    all.sort_unstable();
+    all.dedup();
+    all
 }
 
 /// The one-rings of `mesh` as compressed rows (sorted, no repeats): its vertex adjacency
