@@ -221,10 +221,11 @@ fn search_piece(
                     .collect();
                 let parts = uncut.split(slot, vec![vec![first], vec![second]], pack);
                 // one packing at the bar first: most cuts do not reach it
-                if !fits_at(&parts, first_bar, pack) {
+                let turned = parts.turned(pack);
+                if !fits_at(&parts, &turned, first_bar, pack) {
                     return None;
                 }
-                let trial = trial_pack(&parts, first_bar, pack)?;
+                let trial = trial_pack(&parts, &turned, first_bar, pack)?;
                 Some((trial, path))
             })
             .collect();

@@ -341,19 +341,29 @@ impl Outlined {
         out.square.splice(slot..=slot, new.square);
         out
     }
+
+    /// The charts in the orientations the profile packer tries (for [`fits_at`] and
+    /// [`trial_pack`] of the same charts: turned once).
+    pub(crate) fn turned(&self, options: &PackOptions) -> Vec<Vec<crate::profile::Turned>> {
+        turned_charts(&self.loops, &self.area, &self.square, options)
+    }
 }
 
-/// Whether the profile packer fits the `charts` into the square at common scale `scale`
-/// (texture units per layout unit, as [`Packing::scale`]) on its coarse grid, in either of
-/// its orders: one packing each, a quick test of whether a change to the charts can beat a
-/// scale reached before.
-pub(crate) fn fits_at(charts: &Outlined, scale: f64, options: &PackOptions) -> bool {
-    let turned = turned_charts(&charts.loops, &charts.area, &charts.square, options);
+/// Whether the profile packer fits the `charts` (`turned` as [`Outlined::turned`] gives
+/// them) into the square at common scale `scale` (texture units per layout unit, as
+/// [`Packing::scale`]) on its coarse grid, in either of its orders: one packing each, a
+/// quick test of whether a change to the charts can beat a scale reached before.
+pub(crate) fn fits_at(
+    charts: &Outlined,
+    turned: &[Vec<crate::profile::Turned>],
+    scale: f64,
+    options: &PackOptions,
+) -> bool {
     let n = options.resolution;
     let cell = if n >= 64 { PROFILE_CELL } else { 1.0 };
     orders(&charts.area).iter().any(|order| {
         crate::profile::pack(
-            &turned,
+            turned,
             order,
             scale * n as f64,
             n,
@@ -371,17 +381,23 @@ pub(crate) fn fits_at(charts: &Outlined, scale: f64, options: &PackOptions) -> b
 /// gain a neck cut must bring ([`crate::neck::NECK_GAIN`], 3 %).
 pub const TRIAL_STEPS: usize = 7;
 
-/// A neck trial's packing of `charts`: the profile packer alone on its coarse grid,
+/// A neck trial's packing of `charts` (`turned` as [`Outlined::turned`] gives them): the
+/// profile packer alone on its coarse grid,
 /// searched above `floor` (texture units per layout unit, a scale [`fits_at`] found the
 /// charts reach) in [`TRIAL_STEPS`] steps; `None` when it finds no higher scale. Its
 /// efficiency is not measured (0): a trial is compared by its scale, and the atlas packed
 /// again once its cuts are chosen.
-pub(crate) fn trial_pack(charts: &Outlined, floor: f64, options: &PackOptions) -> Option<Packing> {
+pub(crate) fn trial_pack(
+    charts: &Outlined,
+    turned: &[Vec<crate::profile::Turned>],
+    floor: f64,
+    options: &PackOptions,
+) -> Option<Packing> {
     let n = options.resolution as f64;
-    by_outlines(
+    by_turned(
+        turned,
         &charts.loops,
         &charts.area,
-        &charts.square,
         floor * n,
         options,
         false,
@@ -403,10 +419,24 @@ pub(crate) fn by_outlines(
     refine: bool,
     steps: usize,
 ) -> Option<Packing> {
+    let turned = turned_charts(outlines, area_rects, square_rects, options);
+    by_turned(&turned, outlines, area_rects, floor, options, refine, steps)
+}
+
+/// [`by_outlines`] with the charts already turned (`turned`, as [`turned_charts`] gives
+/// them for `outlines` and `area_rects`).
+fn by_turned(
+    turned: &[Vec<crate::profile::Turned>],
+    outlines: &[Vec<Vec<[f64; 2]>>],
+    area_rects: &[BoundingRect],
+    floor: f64,
+    options: &PackOptions,
+    refine: bool,
+    steps: usize,
+) -> Option<Packing> {
     use crate::profile::pack;
     let n = options.resolution;
     let m = options.margin_texels;
-    let turned = turned_charts(outlines, area_rects, square_rects, options);
     let [by_area, by_width] = orders(area_rects);
     let hull_area: f64 = outlines
         .iter()
@@ -427,7 +457,7 @@ pub(crate) fn by_outlines(
         let (mut lo, mut hi) = (best.as_ref().map_or(floor, |b| b.0), ceiling.max(floor));
         for _ in 0..steps {
             let mid = 0.5 * (lo + hi);
-            match pack(&turned, order, mid, n, m, cell, None) {
+            match pack(turned, order, mid, n, m, cell, None) {
                 Some((places, height)) => {
                     lo = mid;
                     if best.as_ref().is_none_or(|b| mid > b.0) {
@@ -445,7 +475,7 @@ pub(crate) fn by_outlines(
         let (mut lo, mut hi) = (s, s * (1.0 + PROFILE_REFINE));
         for _ in 0..PROFILE_REFINE_STEPS {
             let mid = 0.5 * (lo + hi);
-            match pack(&turned, order, mid, n, m, 1.0, Some(&fixed)) {
+            match pack(turned, order, mid, n, m, 1.0, Some(&fixed)) {
                 Some(found) => {
                     lo = mid;
                     (s, places, height) = (mid, found.0, found.1);
@@ -457,7 +487,7 @@ pub(crate) fn by_outlines(
     let nf = n as f64;
     let charts = places
         .iter()
-        .zip(&turned)
+        .zip(turned)
         .map(|(p, t)| ChartPlacement {
             angle: t[p.turn].angle,
             scale: s / nf,
