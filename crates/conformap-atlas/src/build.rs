@@ -10,8 +10,8 @@ use serde::Serialize;
 use crate::chart::given::{chart_auto, chart_given, AutoCones};
 use crate::chart::seamless::{chart_seamless, seam_rigidity};
 use crate::chart::{
-    chart_component, chart_quality, detach_folded, flipped_corner_faces, merge_pieces, polish,
-    split_overlapping, Piece,
+    chart_component_for, chart_quality, detach_folded, flipped_corner_faces, merge_pieces, polish,
+    polish_with, split_overlapping, Piece,
 };
 use crate::component::ComponentChart;
 use crate::cones::{Cone, ConeOptions};
@@ -337,7 +337,9 @@ pub fn build_atlas_with_cones(
                 autos.push(auto);
                 chart
             }
-            (None, None) => chart_component(&mesh, options.cones, &options.cone_options)?,
+            (None, None) => {
+                chart_component_for(&mesh, options.cones, &options.cone_options, options.polish)?
+            }
         };
         timings.cones += chart.cones_ms;
         timings.charts += ms(start) - chart.cones_ms;
@@ -350,7 +352,10 @@ pub fn build_atlas_with_cones(
                 .applies(mesh.num_vertices(), chart.cones.area_spread)
         {
             let start = std::time::Instant::now();
-            let polished = polish(&mesh, &chart.cut.mesh, &mut chart.uv);
+            let polished = match chart.polish_plan.0.take() {
+                Some(plan) => polish_with(plan, &chart.cut.mesh, &mut chart.uv),
+                None => polish(&mesh, &chart.cut.mesh, &mut chart.uv),
+            };
             if polished.energy.iter().all(|e| e.is_finite()) {
                 polish_energy[0] += polished.energy[0];
                 polish_energy[1] += polished.energy[1];

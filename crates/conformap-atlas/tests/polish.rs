@@ -1,7 +1,7 @@
 //! The charts' distortion polish (`--polish`): lower area spread and angle distortion
 //! together, every seam edge keeping the rotation between its two sides.
 
-use conformap_atlas::chart::{chart_closed, polish};
+use conformap_atlas::chart::{chart_closed, polish, polish_with, PolishPlan};
 use conformap_atlas::{build_atlas, AtlasOptions, ConeOptions, Polish, POLISH_AUTO_SPREAD};
 use conformap_mesh::{TriMesh, NO_HALFEDGE};
 use num_complex::Complex64;
@@ -132,5 +132,23 @@ fn auto_polishes_spot_and_leaves_eightsim() {
             .cones
             .area_spread;
         assert_eq!(metric >= POLISH_AUTO_SPREAD, polished, "{name}: {metric}");
+    }
+}
+
+/// The atlas makes the polish's plan (seams, pattern, symbolic analysis, 3D targets) while
+/// the chart is being flattened and polishes with it later: the layout is exactly that of
+/// the polish making its own plan, on a genus-0 chart (cone seams) and a genus-2 one.
+#[test]
+fn a_plan_made_before_the_layout_polishes_exactly_as_the_polish_alone() {
+    for name in ["spot", "eightsim"] {
+        let mesh = fixture(name);
+        let chart = chart_closed(&mesh, 8, &ConeOptions::DEFAULT).expect("chart");
+        let plan = PolishPlan::new(&mesh, &chart.cut.mesh);
+        let (mut alone, mut planned) = (chart.uv.clone(), chart.uv.clone());
+        let a = polish(&mesh, &chart.cut.mesh, &mut alone);
+        let b = polish_with(plan, &chart.cut.mesh, &mut planned);
+        assert!(a.step > 0.0, "{name}: {a:?}");
+        assert_eq!(a, b, "{name}");
+        assert_eq!(alone, planned, "{name}");
     }
 }

@@ -9,6 +9,7 @@ use super::piece::Piece;
 use super::repair::detach_folded;
 use super::split::split_overlapping;
 use super::{chart_closed_by, chart_quality, drop_fans, Chart};
+use crate::build::Polish;
 use crate::cones::{greedy_count, place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
@@ -45,7 +46,7 @@ pub fn chart_given(mesh: &TriMesh, cones: &[Cone]) -> Result<Chart, AtlasError> 
     let place = |metric: &ConeMetric| given_set(metric, cones);
     with_holes_filled(mesh, |m| {
         let needed = !cones.is_empty() || m.boundary_loops().is_empty();
-        chart_closed_by(m, needed.then_some(&place))
+        chart_closed_by(m, needed.then_some(&place), Polish::Never)
     })
 }
 
@@ -87,7 +88,7 @@ pub fn chart_auto(
 ) -> Result<(Chart, AutoCones), AtlasError> {
     let free_boundary = !mesh.boundary_loops().is_empty() && mesh.genus() == Some(0);
     if free_boundary {
-        let chart = chart_closed_by(mesh, None)?;
+        let chart = chart_closed_by(mesh, None, Polish::Never)?;
         let spread = chart_quality(mesh, &chart.cut, &chart.uv).area_spread;
         if spread <= max_spread {
             let auto = AutoCones {
@@ -201,7 +202,7 @@ fn chart_auto_from(
         chosen.set(Some((best.cones.len(), best.area_spread, true)));
         best
     };
-    let chart = with_holes_filled(mesh, |m| chart_closed_by(m, Some(&place)))?;
+    let chart = with_holes_filled(mesh, |m| chart_closed_by(m, Some(&place), Polish::Never))?;
     let (count, metric_spread, capped) = chosen.get().unwrap_or((0, f64::NAN, false));
     let auto = AutoCones {
         count,

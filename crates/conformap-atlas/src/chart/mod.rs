@@ -25,12 +25,13 @@ use conformap_mesh::{
 };
 use num_complex::Complex64;
 
+use crate::build::Polish;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
 
 pub(crate) use merge::merge_pieces;
 pub use piece::Piece;
-pub use polish::{polish, PolishReport};
+pub use polish::{polish, polish_with, PolishPlan, PolishReport};
 pub(crate) use quality::flipped_corner_faces;
 pub use quality::{chart_quality, ChartQuality};
 pub use repair::{detach_folded, unfold, REPAIR_RINGS, REPAIR_TOLERANCE};
@@ -55,6 +56,19 @@ pub struct Chart {
     /// Wall time of the cone metric and the cone placement, milliseconds (0 where no
     /// cones were placed).
     pub cones_ms: f64,
+    /// The polish's plan, made beside the flattening when the atlas polishes this chart.
+    pub(crate) polish_plan: PlanSlot,
+}
+
+/// A [`PolishPlan`] kept with its chart until the polish takes it. A cache, not part of the
+/// chart's value: a clone of the chart has none (the polish then makes its own).
+#[derive(Debug, Default)]
+pub(crate) struct PlanSlot(pub(crate) Option<PolishPlan>);
+
+impl Clone for PlanSlot {
+    fn clone(&self) -> Self {
+        Self(None)
+    }
 }
 
 /// Charts one connected component of any topology:
@@ -72,11 +86,27 @@ pub fn chart_component(
     cones: Option<usize>,
     options: &ConeOptions,
 ) -> Result<Chart, AtlasError> {
+    chart_component_for(mesh, cones, options, Polish::Never)
+}
+
+/// [`chart_component`] for an atlas that polishes as `polish` says: a chart it will polish
+/// gets its [`PolishPlan`] made on one core while the other flattens it.
+pub(crate) fn chart_component_for(
+    mesh: &TriMesh,
+    cones: Option<usize>,
+    options: &ConeOptions,
+    polish: Polish,
+) -> Result<Chart, AtlasError> {
+    let closed = |cones: usize| {
+        let place = |metric: &ConeMetric| place_cones(metric, cones, options);
+        let metric_needed = cones > 0 || mesh.boundary_loops().is_empty();
+        chart_closed_by(mesh, metric_needed.then_some(&place), polish)
+    };
     if mesh.boundary_loops().is_empty() {
-        return chart_closed(mesh, cones.unwrap_or(8), options);
+        return closed(cones.unwrap_or(8));
     }
     if mesh.genus() == Some(0) {
-        return chart_closed(mesh, cones.unwrap_or(0), options);
+        return closed(cones.unwrap_or(0));
     }
     let all: Vec<usize> = (0..mesh.boundary_loops().len()).collect();
     let filled = fill_holes(mesh, &all).map_err(|e| AtlasError::Mesh(e.to_string()))?;
@@ -116,6 +146,8 @@ fn drop_fans(chart: Chart, faces: usize) -> Chart {
             on_cut: chart.cut.on_cut,
         },
         uv,
+        // the plan was made for the filled surface's cut
+        polish_plan: PlanSlot(None),
         ..chart
     }
 }
@@ -134,19 +166,20 @@ pub fn chart_closed(
 ) -> Result<Chart, AtlasError> {
     let place = |metric: &ConeMetric| place_cones(metric, cones, options);
     let metric_needed = cones > 0 || mesh.boundary_loops().is_empty();
-    chart_closed_by(mesh, metric_needed.then_some(&place))
+    chart_closed_by(mesh, metric_needed.then_some(&place), Polish::Never)
 }
 
 /// [`chart_closed`] with the cones chosen by `place` from the surface's cone metric (one
 /// factorization, however many sets `place` tries); `None` on a surface with boundary:
 /// no cones, the free boundary. The hook of given cones and of `--cones auto`
-/// (module `given`).
+/// (module `given`). A chart `polish` applies to gets its [`PolishPlan`].
 ///
 /// # Errors
 /// As [`chart_closed`].
 pub(crate) fn chart_closed_by(
     mesh: &TriMesh,
     place: Option<&dyn Fn(&ConeMetric) -> ConeSet>,
+    polish: Polish,
 ) -> Result<Chart, AtlasError> {
     // a surface with boundary comes here with genus 0: a planar domain needs no cut
     let handles = mesh.boundary_loops().is_empty() && mesh.genus() != Some(0);
@@ -158,7 +191,8 @@ pub(crate) fn chart_closed_by(
             // boundary first flattening's free boundary: no cone metric to factor
             let edges = EdgeIndex::new(mesh);
             let none = vec![false; edges.len()];
-            return flatten_cut(mesh, &edges, none, ConeSet::none(mesh.num_vertices()), 0.0);
+            let set = ConeSet::none(mesh.num_vertices());
+            return flatten_cut(mesh, &edges, none, set, 0.0, false);
         }
     };
     let start = std::time::Instant::now();
@@ -186,20 +220,25 @@ pub(crate) fn chart_closed_by(
     let set = place(&metric);
     let cones_ms = start.elapsed().as_secs_f64() * 1e3;
     let handle_length = cut_length(mesh, edges, &on_cut);
-    let chart = flatten_cut(mesh, edges, on_cut, set, handle_length)?;
+    // as the atlas decides (a free boundary without cones is never polished)
+    let free = set.cones.is_empty() && !mesh.boundary_loops().is_empty();
+    let plan = !free && polish.applies(mesh.num_vertices(), set.area_spread);
+    let chart = flatten_cut(mesh, edges, on_cut, set, handle_length, plan)?;
     Ok(Chart { cones_ms, ..chart })
 }
 
 /// Joins the cones of `set` to the cut `on_cut` (handle loops of length `handle_length`,
 /// or a boundary), opens the surface along it and flattens the disk with the cone metric's
 /// scale on its boundary (the free boundary when there are no cones on a surface with
-/// boundary), then unfolds any folded face.
+/// boundary), then unfolds any folded face. With `plan`, the polish's plan is made on
+/// one core while the other flattens.
 fn flatten_cut(
     mesh: &TriMesh,
     edges: &EdgeIndex,
     mut on_cut: Vec<bool>,
     set: ConeSet,
     handle_length: f64,
+    plan: bool,
 ) -> Result<Chart, AtlasError> {
     let graph = cut::Graph::new(mesh, edges);
     let targets: Vec<u32> = set.cones.iter().map(|c| c.vertex).collect();
@@ -232,7 +271,11 @@ fn flatten_cut(
         .with_fold_fallback(false)
         // the chart's quality is measured once the folds are repaired (`chart_quality`)
         .with_measure(false);
-    let flat = flatten(&cut.mesh, &options).map_err(|e| AtlasError::Flatten(e.to_string()))?;
+    let (flat, plan) = rayon::join(
+        || flatten(&cut.mesh, &options),
+        || plan.then(|| PolishPlan::new(mesh, &cut.mesh)),
+    );
+    let flat = flat.map_err(|e| AtlasError::Flatten(e.to_string()))?;
     let mut uv = flat.map;
     let folded_before_repair = repair::folded_faces(&cut.mesh, &uv).len();
     unfold(&cut.mesh, &mut uv);
@@ -244,6 +287,7 @@ fn flatten_cut(
         cut_length: handle_length + added,
         closure_residual: flat.closure_residual,
         cones_ms: 0.0,
+        polish_plan: PlanSlot(plan),
     })
 }
 

@@ -95,31 +95,73 @@ struct SeamEdge {
 /// of the energy (the chart's repairs deal with them) and no other face may fold. Leaves
 /// `uv` as it is when the system does not factor or no step lowers the energy.
 pub fn polish(uncut: &TriMesh, cut: &TriMesh, uv: &mut [Complex64]) -> PolishReport {
+    polish_with(PolishPlan::new(uncut, cut), cut, uv)
+}
+
+/// What the polish needs of the cut disk before its layout exists: the seams, the system's
+/// sparsity and its symbolic analysis, the 3D faces' log areas and angles. The atlas
+/// computes it on one core while the other flattens the disk (spot: 3–4 ms of the
+/// polish's 12–14 off the critical path).
+pub struct PolishPlan {
+    /// The seam edges `[a, b, a′, b′]` (module docs).
+    seams: Vec<[usize; 4]>,
+    pattern: Pattern,
+    analysis: Result<SymbolicAnalysis, OperatorError>,
+    geometry: Geometry,
+}
+
+impl PolishPlan {
+    /// The plan for the cut disk `cut` of `uncut` (as [`polish`] takes them): the seams
+    /// and the pattern, then the ordering and symbolic analysis beside the 3D targets.
+    pub fn new(uncut: &TriMesh, cut: &TriMesh) -> Self {
+        let seams: Vec<[usize; 4]> = super::cut::seam_edges(uncut, cut)
+            .into_iter()
+            .map(|e| e.map(|v| v as usize))
+            .collect();
+        let pattern = Pattern::new(cut.num_vertices(), cut.faces(), &seams);
+        let (analysis, geometry) = rayon::join(|| pattern.analyse(), || Geometry::new(cut));
+        Self {
+            seams,
+            pattern,
+            analysis,
+            geometry,
+        }
+    }
+}
+
+impl std::fmt::Debug for PolishPlan {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PolishPlan")
+            .field("variables", &(self.pattern.starts.len() - 1))
+            .field("seam_edges", &self.seams.len())
+            .finish_non_exhaustive()
+    }
+}
+
+/// [`polish`] with its plan made already (for the same `cut`; the layout `uv` may have
+/// been made after it).
+pub fn polish_with(plan: PolishPlan, cut: &TriMesh, uv: &mut [Complex64]) -> PolishReport {
     let kept = |e: f64| PolishReport {
         energy: [e, e],
         step: 0.0,
         seam_residual: 0.0,
     };
+    let PolishPlan {
+        seams,
+        pattern,
+        analysis,
+        geometry,
+    } = plan;
     let faces = cut.faces();
-    let seams = seam_edges(uncut, cut, uv);
+    let seams = seam_rotations(&seams, uv);
     let n = uv.len();
-    let pattern = Pattern::new(n, faces, &seams);
-    // the ordering and symbolic analysis (pattern only) on one core, the targets, the
-    // energy and the Gauss–Newton system's values on the other
-    let (analysis, assembled) = rayon::join(
-        || pattern.analyse(),
-        || {
-            let target = Target::new(cut, uv);
-            let e0 = target.energy(faces, uv)?;
-            let mut values = vec![0.0; pattern.rows.len()];
-            let mut gradient = vec![0.0; 2 * n];
-            target.assemble(faces, uv, &pattern, &mut values, &mut gradient);
-            Some((target, e0, values, gradient))
-        },
-    );
-    let Some((target, e0, mut values, gradient)) = assembled else {
+    let target = Target::new(geometry, faces, uv);
+    let Some(e0) = target.energy(faces, uv) else {
         return kept(f64::NAN);
     };
+    let mut values = vec![0.0; pattern.rows.len()];
+    let mut gradient = vec![0.0; 2 * n];
+    target.assemble(faces, uv, &pattern, &mut values, &mut gradient);
     let mean_diagonal = (0..2 * n).map(|p| values[pattern.at(p, p)]).sum::<f64>() / (2 * n) as f64;
     for p in 0..2 * n {
         values[pattern.at(p, p)] *= 1.0 + DAMPING;
@@ -224,12 +266,11 @@ impl SeamEdge {
     }
 }
 
-/// The seam edges of the cut disk, with the rotations the layout `uv` gives them.
-fn seam_edges(uncut: &TriMesh, cut: &TriMesh, uv: &[Complex64]) -> Vec<SeamEdge> {
-    super::cut::seam_edges(uncut, cut)
-        .into_iter()
-        .map(|e| {
-            let [a, b, a2, b2] = e.map(|v| v as usize);
+/// The seam edges of the cut disk with the rotations the layout `uv` gives them.
+fn seam_rotations(seams: &[[usize; 4]], uv: &[Complex64]) -> Vec<SeamEdge> {
+    seams
+        .iter()
+        .map(|&[a, b, a2, b2]| {
             let r = (uv[b2] - uv[a2]) / (uv[b] - uv[a]);
             SeamEdge {
                 a,
@@ -263,7 +304,7 @@ struct Pattern {
 }
 
 impl Pattern {
-    fn new(n: usize, faces: &[[u32; 3]], seams: &[SeamEdge]) -> Self {
+    fn new(n: usize, faces: &[[u32; 3]], seams: &[[usize; 4]]) -> Self {
         let mut neighbours: Vec<Vec<usize>> = (0..n).map(|j| vec![j]).collect();
         let mut link = |x: usize, y: usize| {
             let (i, j) = (x.min(y), x.max(y));
@@ -274,8 +315,7 @@ impl Pattern {
                 link(t[k] as usize, t[(k + 1) % 3] as usize);
             }
         }
-        for s in seams {
-            let all = [s.a, s.b, s.a2, s.b2];
+        for &all in seams {
             for x in 0..4 {
                 for y in x + 1..4 {
                     if all[x] != all[y] {
@@ -356,6 +396,30 @@ impl Pattern {
 }
 
 /// The 3D faces' log areas and corner angles the layout is measured against.
+struct Geometry {
+    log_area: Vec<f64>,
+    angles: Vec<[f64; 3]>,
+}
+
+impl Geometry {
+    fn new(cut: &TriMesh) -> Self {
+        let p = cut.positions();
+        let points = |t: &[u32; 3]| t.map(|v| p[v as usize]);
+        let faces = cut.faces();
+        Self {
+            log_area: faces
+                .iter()
+                .map(|t| {
+                    let q = points(t);
+                    conformap_mesh::triangle_area(q[0], q[1], q[2]).ln()
+                })
+                .collect(),
+            angles: faces.iter().map(|t| triangle_angles(points(t))).collect(),
+        }
+    }
+}
+
+/// [`Geometry`] and the faces of the layout the polish measures.
 struct Target {
     log_area: Vec<f64>,
     angles: Vec<[f64; 3]>,
@@ -371,10 +435,7 @@ fn angle_scale() -> f64 {
 }
 
 impl Target {
-    fn new(cut: &TriMesh, uv: &[Complex64]) -> Self {
-        let p = cut.positions();
-        let points = |t: &[u32; 3]| t.map(|v| p[v as usize]);
-        let faces = cut.faces();
+    fn new(geometry: Geometry, faces: &[[u32; 3]], uv: &[Complex64]) -> Self {
         let skip: Vec<bool> = faces
             .iter()
             .map(|t| {
@@ -386,14 +447,8 @@ impl Target {
         Self {
             count: skip.iter().filter(|&&s| !s).count(),
             skip,
-            log_area: faces
-                .iter()
-                .map(|t| {
-                    let q = points(t);
-                    conformap_mesh::triangle_area(q[0], q[1], q[2]).ln()
-                })
-                .collect(),
-            angles: faces.iter().map(|t| triangle_angles(points(t))).collect(),
+            log_area: geometry.log_area,
+            angles: geometry.angles,
         }
     }
 

@@ -32,7 +32,8 @@ use conformap_mesh::{cut_mesh_along, CutMesh, EdgeIndex, TriMesh};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::{chart_closed_by, cut, unfold, Chart};
+use super::{chart_closed_by, cut, unfold, Chart, PlanSlot};
+use crate::build::Polish;
 use crate::component::ComponentChart;
 use crate::cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
@@ -186,13 +187,13 @@ pub fn chart_seamless(
         };
         if !closed && count == 0 {
             // a disk without cones has no seam: the free boundary
-            chart_closed_by(mesh, None)?
+            chart_closed_by(mesh, None, Polish::Never)?
         } else {
             let place = |metric: &ConeMetric| {
                 let placed = place_cones(metric, count, options);
                 quantize_cones(metric, &placed.cones)
             };
-            chart_closed_by(mesh, Some(&place))?
+            chart_closed_by(mesh, Some(&place), Polish::Never)?
         }
     };
     unfold_across_seams(&mut chart);
@@ -254,6 +255,7 @@ pub fn chart_one_form(mesh: &TriMesh) -> Result<Chart, AtlasError> {
         },
         cut_length: handle_length + added,
         closure_residual: 0.0,
+        polish_plan: PlanSlot::default(),
         folded_before_repair,
         cones_ms: 0.0,
     })
