@@ -155,7 +155,7 @@ impl TriMesh {
         }
     }
 
-    /// A mesh opened from a validated one (`topology::cut_mesh`): `faces` are the
+    /// A mesh opened from a validated one (`topology::cut_mesh`, [`Self::sub_mesh`]): `faces` are the
     /// source's faces with their corners renumbered to copies of its vertices (`positions`
     /// copied from it) and `opposite` its half-edge matching with the opened edges removed,
     /// so the per-face and per-index checks and the half-edge matching of
@@ -176,6 +176,77 @@ impl TriMesh {
             || count_components(n, &faces),
         );
         Ok(Self::checked(positions, faces, opposite, fans?, components))
+    }
+
+    /// The mesh of the faces `faces` of this one (each once), its vertices renumbered in
+    /// the order the faces first use them, and the vertex of this mesh each one is: what
+    /// [`TriMesh::try_new`] gives on those faces, without repeating the checks this mesh
+    /// passed (the positions, the faces, the half-edge matching, which a subset of faces
+    /// inherits). What a subset can break is checked: every vertex's fan and the boundary
+    /// loops; the components are counted.
+    ///
+    /// # Errors
+    /// [`MeshError::NoVertices`] for no faces; [`MeshError::NonManifoldVertex`] (as
+    /// `try_new` reports it) where a vertex's faces in the subset form two fans.
+    ///
+    /// # Panics
+    /// If a face index is out of range or repeated (a caller bug, never user data).
+    ///
+    /// # Examples
+    /// ```
+    /// use conformap_mesh::TriMesh;
+    /// let square = TriMesh::try_new(
+    ///     vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+    ///     vec![[0, 1, 2], [2, 1, 3]],
+    /// )?;
+    /// let (half, vertices) = square.sub_mesh(&[1])?;
+    /// assert_eq!(half.faces(), &[[0, 1, 2]]);
+    /// assert_eq!(vertices, vec![2, 1, 3]);
+    /// # Ok::<(), conformap_mesh::MeshError>(())
+    /// ```
+    pub fn sub_mesh(&self, faces: &[u32]) -> Result<(TriMesh, Vec<u32>), MeshError> {
+        let mut local = vec![u32::MAX; self.num_vertices()];
+        let mut vertices: Vec<u32> = Vec::new();
+        let mut tris = Vec::with_capacity(faces.len());
+        for &f in faces {
+            tris.push(self.faces[f as usize].map(|v| {
+                if local[v as usize] == u32::MAX {
+                    local[v as usize] = vertices.len() as u32;
+                    vertices.push(v);
+                }
+                local[v as usize]
+            }));
+        }
+        if tris.is_empty() {
+            // as `try_new` reports no faces at all (so no vertex either)
+            return Err(MeshError::NoVertices);
+        }
+        // the matching restricted to the subset: a half-edge's partner, where its face is
+        // kept, at that face's new place
+        let mut new_face = vec![u32::MAX; self.num_faces()];
+        for (k, &f) in faces.iter().enumerate() {
+            assert_eq!(new_face[f as usize], u32::MAX, "face {f} listed twice");
+            new_face[f as usize] = k as u32;
+        }
+        let mut opposite = Vec::with_capacity(3 * faces.len());
+        for &f in faces {
+            for h in 3 * f as usize..3 * f as usize + 3 {
+                let o = self.opposite[h];
+                opposite.push(if o == NO_HALFEDGE {
+                    NO_HALFEDGE
+                } else {
+                    match new_face[o as usize / 3] {
+                        u32::MAX => NO_HALFEDGE,
+                        g => 3 * g + o % 3,
+                    }
+                });
+            }
+        }
+        let positions = vertices
+            .iter()
+            .map(|&v| self.positions[v as usize])
+            .collect();
+        Ok((Self::opened(positions, tris, opposite)?, vertices))
     }
 
     /// Vertex positions.

@@ -305,3 +305,64 @@ fn the_first_defect_face_by_face_is_reported() {
         MeshError::DuplicateFace { .. }
     ));
 }
+
+/// `sub_mesh` is `try_new` on the same faces (renumbered in order of first use), without
+/// the checks the whole passed: the same mesh where the subset is valid, the same error
+/// where a vertex's faces split into two fans, on random subsets of a grid.
+#[test]
+fn a_sub_mesh_is_the_mesh_of_its_faces() {
+    let (p, f) = grid(8);
+    let whole = TriMesh::try_new(p.clone(), f.clone()).expect("grid");
+    let mut rng = conformap_testkit::XorShift64Star(0x5eed);
+    let (mut valid, mut pinched) = (0, 0);
+    for trial in 0..200 {
+        // a random share of the faces, in a shuffled order
+        let keep = 1 + trial % 10;
+        let mut faces: Vec<u32> = (0..f.len() as u32)
+            .filter(|_| rng.next_u64() % 10 < keep as u64)
+            .collect();
+        for i in (1..faces.len()).rev() {
+            faces.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
+        }
+        if faces.is_empty() {
+            continue;
+        }
+        let mut local = vec![u32::MAX; p.len()];
+        let mut vertices = Vec::new();
+        let tris: Vec<[u32; 3]> = faces
+            .iter()
+            .map(|&k| {
+                f[k as usize].map(|v| {
+                    if local[v as usize] == u32::MAX {
+                        local[v as usize] = vertices.len() as u32;
+                        vertices.push(v);
+                    }
+                    local[v as usize]
+                })
+            })
+            .collect();
+        let points = vertices.iter().map(|&v| p[v as usize]).collect();
+        match (TriMesh::try_new(points, tris), whole.sub_mesh(&faces)) {
+            (Ok(a), Ok((b, kept))) => {
+                assert_eq!(kept, vertices);
+                assert_eq!(a.faces(), b.faces());
+                assert_eq!(a.positions(), b.positions());
+                assert_eq!(a.opposite_halfedges(), b.opposite_halfedges());
+                assert_eq!(a.boundary_loops(), b.boundary_loops());
+                assert_eq!(a.num_components(), b.num_components());
+                assert_eq!(a.num_edges(), b.num_edges());
+                valid += 1;
+            }
+            (Err(a), Err(b)) => {
+                assert_eq!(a, b, "trial {trial}");
+                pinched += 1;
+            }
+            (a, b) => panic!("trial {trial}: try_new {a:?}, sub_mesh {b:?}"),
+        }
+    }
+    // both outcomes seen
+    assert!(
+        valid > 20 && pinched > 20,
+        "{valid} valid, {pinched} pinched"
+    );
+}
