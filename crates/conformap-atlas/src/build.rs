@@ -303,6 +303,31 @@ pub fn build_atlas_with_cones(
     options: &AtlasOptions,
     given: Option<&[(u32, f64)]>,
 ) -> Result<Atlas, AtlasError> {
+    build(positions, faces, options, given, None)
+}
+
+/// [`build_atlas_with_cones`] of a mesh validated already: each component taken from it
+/// with [`TriMesh::sub_mesh`] (the mesh validating the component's faces again would give,
+/// for a fraction of the time: 1 ms of spot's 65).
+///
+/// # Errors
+/// As [`build_atlas`].
+pub fn build_atlas_of_mesh(
+    mesh: &TriMesh,
+    options: &AtlasOptions,
+    given: Option<&[(u32, f64)]>,
+) -> Result<Atlas, AtlasError> {
+    build(mesh.positions(), mesh.faces(), options, given, Some(mesh))
+}
+
+/// The atlas of `positions`, `faces`, whose mesh is `whole` when it was validated already.
+fn build(
+    positions: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    options: &AtlasOptions,
+    given: Option<&[(u32, f64)]>,
+    whole: Option<&TriMesh>,
+) -> Result<Atlas, AtlasError> {
     if options.seamless && options.max_area_spread.is_some() && given.is_none() {
         return Err(AtlasError::InvalidOption {
             name: "seamless",
@@ -318,8 +343,11 @@ pub fn build_atlas_with_cones(
     let mut polish_energy = [0.0; 2];
     let mut polished_components = 0;
     for (index, face_ids) in components.into_iter().enumerate() {
-        let (mesh, vertices) = component_mesh(positions, faces, &face_ids)
-            .map_err(|why| AtlasError::Component { index, why })?;
+        let (mesh, vertices) = match whole {
+            Some(whole) => whole.sub_mesh(&face_ids).map_err(|e| e.to_string()),
+            None => component_mesh(positions, faces, &face_ids),
+        }
+        .map_err(|why| AtlasError::Component { index, why })?;
         let start = std::time::Instant::now();
         let mut chart = match (given, options.max_area_spread) {
             _ if options.seamless => {

@@ -66,9 +66,9 @@ mod skyline;
 mod summary;
 
 pub use build::{
-    build_atlas, build_atlas_with_cones, split_components, Atlas, AtlasOptions, AtlasReport,
-    AtlasTimings, AutoConesReport, ConeEntry, Polish, POLISH_AUTO_SPREAD, POLISH_AUTO_VERTICES,
-    SEAMLESS_TOLERANCE,
+    build_atlas, build_atlas_of_mesh, build_atlas_with_cones, split_components, Atlas,
+    AtlasOptions, AtlasReport, AtlasTimings, AutoConesReport, ConeEntry, Polish,
+    POLISH_AUTO_SPREAD, POLISH_AUTO_VERTICES, SEAMLESS_TOLERANCE,
 };
 pub use chart::given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
 pub use chart::seamless::{chart_seamless, quantize_cones, seam_rigidity, SeamRigidity};

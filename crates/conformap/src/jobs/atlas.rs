@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 /// Which charts are polished ([`AtlasJob::polish`]).
 pub use conformap_atlas::Polish;
 use conformap_atlas::{
-    atlas_peak_bytes_with, build_atlas_with_cones, AtlasOptions, ChartScale, Layout, PackOptions,
+    atlas_peak_bytes_with, build_atlas_of_mesh, AtlasOptions, ChartScale, Layout, PackOptions,
 };
 use conformap_io::CornerUv;
 use conformap_mesh::TriMesh;
@@ -236,13 +236,8 @@ impl MapJob for AtlasJob {
         let mesh = &input.mesh;
         let given = self.given_cones(input)?;
         let t = std::time::Instant::now();
-        let atlas = build_atlas_with_cones(
-            mesh.positions(),
-            mesh.faces(),
-            &self.options(),
-            given.as_deref(),
-        )
-        .map_err(|e| input.fail(atlas_failure(&e)))?;
+        let atlas = build_atlas_of_mesh(mesh, &self.options(), given.as_deref())
+            .map_err(|e| input.fail(atlas_failure(&e)))?;
         let solve_ms = t.elapsed().as_secs_f64() * 1e3;
         // the metrics (one core) beside the shared texture coordinates (the other)
         let (metrics, uv) = rayon::join(
