@@ -281,7 +281,7 @@ pub struct Atlas {
 ///
 /// # Errors
 /// [`AtlasError::Component`] naming the component whose mesh is not valid, and every error
-/// of [`chart_component`] and [`crate::pack_charts`].
+/// of [`crate::chart_component`] and [`crate::pack_charts`].
 pub fn build_atlas(
     positions: &[[f64; 3]],
     faces: &[[u32; 3]],
