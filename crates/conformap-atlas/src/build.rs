@@ -18,55 +18,13 @@ use crate::cones::{Cone, ConeOptions};
 use crate::error::AtlasError;
 use crate::layout::{keep_in_rows, per_chart_factors, ChartScale, Layout};
 use crate::pack::{pack_charts, PackOptions, Packing};
+use crate::polish_mode::Polish;
 
 /// The largest seam rotation error (radians, from a quarter turn) and residual after the
 /// rigid map (relative to the edge length) a `--seamless` atlas may have: 1e-6 (rounding
 /// leaves 1e-11 at most on the shared meshes; a seam through a hidden cone is off by
 /// tenths).
 pub const SEAMLESS_TOLERANCE: f64 = 1e-6;
-
-/// [`Polish::Auto`] polishes a chart whose cone metric spreads at least this much (sd of
-/// the log area ratio): 0.5. The step wins back what the linearized metric misses, which
-/// grows with `u`: measured against the same run without, spot (0.82 in the metric) 0.835
-/// → 0.790 and armadillo (1.85) 1.860 → 1.718, −5 % and −8 %; below 0.5 it gains 0.4–1.4 %
-/// (brain, david_head, kitten_53k, eight, fertility) and on eightsim (0.16) the spread
-/// rises 0.164 → 0.173.
-pub const POLISH_AUTO_SPREAD: f64 = 0.5;
-
-/// [`Polish::Auto`] polishes charts of components of at most this many vertices: 20,000.
-/// The step's factorization (twice the vertices, 2 × 2 blocks) grows faster than the rest
-/// of the atlas: spot (2,930 vertices) +15–25 % of the whole run, armadillo (43,243)
-/// +44 %, kitten_53k +65 %. Larger surfaces are polished with [`Polish::Always`].
-pub const POLISH_AUTO_VERTICES: usize = 20_000;
-
-/// Which charts the distortion polish ([`polish()`]) runs on. Never on a component with
-/// boundary and no cones (its free-boundary layout is already the least distortion of its
-/// kind; [`AtlasOptions::polish`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Polish {
-    /// No chart (`--polish=never`).
-    Never,
-    /// Charts whose cone metric spreads at least [`POLISH_AUTO_SPREAD`], of components of
-    /// at most [`POLISH_AUTO_VERTICES`] vertices (the default): where the step pays and
-    /// costs little.
-    #[default]
-    Auto,
-    /// Every chart with cones (`--polish`).
-    Always,
-}
-
-impl Polish {
-    /// Whether a chart of a component of `vertices` vertices whose cone metric spreads
-    /// `spread` is polished (`spread` NaN: no cones, or not measured).
-    pub fn applies(self, vertices: usize, spread: f64) -> bool {
-        match self {
-            Self::Never => false,
-            Self::Always => true,
-            Self::Auto => spread >= POLISH_AUTO_SPREAD && vertices <= POLISH_AUTO_VERTICES,
-        }
-    }
-}
 
 /// How an atlas is built. `Default` is [`AtlasOptions::DEFAULT`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -371,14 +329,7 @@ fn build(
         };
         timings.cones += chart.cones_ms;
         timings.charts += ms(start) - chart.cones_ms;
-        // a free boundary without cones is boundary first flattening's own least distortion:
-        // the polish would trade its angles for area there (AtlasOptions::polish)
-        let free = chart.cones.cones.is_empty() && !mesh.boundary_loops().is_empty();
-        if !free
-            && options
-                .polish
-                .applies(mesh.num_vertices(), chart.cones.area_spread)
-        {
+        if options.polish.polishes(&mesh, &chart.cones) {
             let start = std::time::Instant::now();
             let polished = match chart.polish_plan.0.take() {
                 Some(plan) => polish_with(plan, &chart.cut.mesh, &mut chart.uv),

@@ -61,14 +61,14 @@ mod layout;
 mod neck;
 pub mod nonmanifold;
 mod pack;
+mod polish_mode;
 mod profile;
 mod skyline;
 mod summary;
 
 pub use build::{
     build_atlas, build_atlas_of_mesh, build_atlas_with_cones, split_components, Atlas,
-    AtlasOptions, AtlasReport, AtlasTimings, AutoConesReport, ConeEntry, Polish,
-    POLISH_AUTO_SPREAD, POLISH_AUTO_VERTICES, SEAMLESS_TOLERANCE,
+    AtlasOptions, AtlasReport, AtlasTimings, AutoConesReport, ConeEntry, SEAMLESS_TOLERANCE,
 };
 pub use chart::given::{chart_auto, chart_given, AutoCones, MAX_AUTO_CONES};
 pub use chart::seamless::{chart_seamless, quantize_cones, seam_rigidity, SeamRigidity};
@@ -82,4 +82,5 @@ pub use pack::{
     pack_charts, pack_outlined, ChartPlacement, PackOptions, Packing, PROFILE_CELL, PROFILE_REFINE,
     PROFILE_REFINE_STEPS, PROFILE_STEPS,
 };
+pub use polish_mode::{Polish, POLISH_AUTO_SPREAD, POLISH_AUTO_VERTICES};
 pub use summary::{atlas_peak_bytes, atlas_peak_bytes_with};

@@ -151,4 +151,13 @@ fn a_plan_made_before_the_layout_polishes_exactly_as_the_polish_alone() {
         assert_eq!(a, b, "{name}");
         assert_eq!(alone, planned, "{name}");
     }
+    // a plan of another disk leaves the layout alone
+    let (spot, other) = (fixture("spot"), fixture("eightsim"));
+    let chart = chart_closed(&spot, 8, &ConeOptions::DEFAULT).expect("chart");
+    let elsewhere = chart_closed(&other, 8, &ConeOptions::DEFAULT).expect("chart");
+    let plan = PolishPlan::new(&other, &elsewhere.cut.mesh);
+    let mut uv = chart.uv.clone();
+    let r = polish_with(plan, &chart.cut.mesh, &mut uv);
+    assert!(r.energy[0].is_nan() && r.step == 0.0, "{r:?}");
+    assert_eq!(uv, chart.uv);
 }

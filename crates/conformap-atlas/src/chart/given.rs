@@ -9,9 +9,9 @@ use super::piece::Piece;
 use super::repair::detach_folded;
 use super::split::split_overlapping;
 use super::{chart_closed_by, chart_quality, drop_fans, Chart};
-use crate::build::Polish;
 use crate::cones::{greedy_count, place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
+use crate::polish_mode::Polish;
 
 /// The most cones `--cones auto` places on one component: 32. Each count is a placement
 /// of its own (greedy pass and moves, a few Green's function solves per cone), so the

@@ -25,9 +25,9 @@ use conformap_mesh::{
 };
 use num_complex::Complex64;
 
-use crate::build::Polish;
 use crate::cones::{place_cones, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
+use crate::polish_mode::Polish;
 
 pub(crate) use merge::merge_pieces;
 pub use piece::Piece;
@@ -220,9 +220,8 @@ pub(crate) fn chart_closed_by(
     let set = place(&metric);
     let cones_ms = start.elapsed().as_secs_f64() * 1e3;
     let handle_length = cut_length(mesh, edges, &on_cut);
-    // as the atlas decides (a free boundary without cones is never polished)
-    let free = set.cones.is_empty() && !mesh.boundary_loops().is_empty();
-    let plan = !free && polish.applies(mesh.num_vertices(), set.area_spread);
+    // as the atlas decides
+    let plan = polish.polishes(mesh, &set);
     let chart = flatten_cut(mesh, edges, on_cut, set, handle_length, plan)?;
     Ok(Chart { cones_ms, ..chart })
 }

@@ -139,7 +139,8 @@ impl std::fmt::Debug for PolishPlan {
 }
 
 /// [`polish`] with its plan made already (for the same `cut`; the layout `uv` may have
-/// been made after it).
+/// been made after it). A plan of another disk (other vertex or face counts) leaves `uv`
+/// as it is, its energy NaN.
 pub fn polish_with(plan: PolishPlan, cut: &TriMesh, uv: &mut [Complex64]) -> PolishReport {
     let kept = |e: f64| PolishReport {
         energy: [e, e],
@@ -153,6 +154,12 @@ pub fn polish_with(plan: PolishPlan, cut: &TriMesh, uv: &mut [Complex64]) -> Pol
         geometry,
     } = plan;
     let faces = cut.faces();
+    if pattern.neighbours.len() != uv.len()
+        || uv.len() != cut.num_vertices()
+        || geometry.log_area.len() != faces.len()
+    {
+        return kept(f64::NAN);
+    }
     let seams = seam_rotations(&seams, uv);
     let n = uv.len();
     let target = Target::new(geometry, faces, uv);

@@ -33,10 +33,10 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use super::{chart_closed_by, cut, unfold, Chart, PlanSlot};
-use crate::build::Polish;
 use crate::component::ComponentChart;
 use crate::cones::{place_cones, Cone, ConeMetric, ConeOptions, ConeSet};
 use crate::error::AtlasError;
+use crate::polish_mode::Polish;
 
 /// Rounds of pair moves of [`quantize_cones`] after the rounding: at most 8 (each round
 /// tries every ordered pair of cones, one quarter of defect moved from one to the other
