@@ -190,7 +190,8 @@ impl TriMesh {
     /// `try_new` reports it) where a vertex's faces in the subset form two fans.
     ///
     /// # Panics
-    /// If a face index is out of range or repeated (a caller bug, never user data).
+    /// If a face index is out of range (a caller bug, never user data). A face listed
+    /// twice is [`MeshError::DuplicateFace`], as `try_new` reports it.
     ///
     /// # Examples
     /// ```
@@ -225,7 +226,14 @@ impl TriMesh {
         // kept, at that face's new place
         let mut new_face = vec![u32::MAX; self.num_faces()];
         for (k, &f) in faces.iter().enumerate() {
-            assert_eq!(new_face[f as usize], u32::MAX, "face {f} listed twice");
+            let first = new_face[f as usize];
+            if first != u32::MAX {
+                // the subset's faces `first` and `k` are one face: what `try_new` says
+                return Err(MeshError::DuplicateFace {
+                    face: k,
+                    first: first as usize,
+                });
+            }
             new_face[f as usize] = k as u32;
         }
         let mut opposite = Vec::with_capacity(3 * faces.len());

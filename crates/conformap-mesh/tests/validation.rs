@@ -365,4 +365,19 @@ fn a_sub_mesh_is_the_mesh_of_its_faces() {
         valid > 20 && pinched > 20,
         "{valid} valid, {pinched} pinched"
     );
+    // a face listed twice and no face at all: the errors `try_new` gives
+    let twice = [3u32, 7, 3];
+    let tris: Vec<[u32; 3]> = twice.iter().map(|&k| f[k as usize]).collect();
+    let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
+    used.sort_unstable();
+    used.dedup();
+    let renumber = |v: u32| used.binary_search(&v).expect("used") as u32;
+    let tris: Vec<[u32; 3]> = tris.iter().map(|t| t.map(renumber)).collect();
+    let points = used.iter().map(|&v| p[v as usize]).collect();
+    let expected = TriMesh::try_new(points, tris).expect_err("a face twice");
+    assert_eq!(whole.sub_mesh(&twice).expect_err("a face twice"), expected);
+    assert_eq!(
+        whole.sub_mesh(&[]).expect_err("no face"),
+        TriMesh::try_new(Vec::new(), Vec::new()).expect_err("no face")
+    );
 }
