@@ -306,6 +306,32 @@ fn the_first_defect_face_by_face_is_reported() {
     ));
 }
 
+/// The faces `ids` of `(p, f)` with their vertices renumbered in order of first use: the
+/// vertices kept, their positions, the faces.
+#[allow(clippy::type_complexity)]
+fn renumbered(
+    p: &[[f64; 3]],
+    f: &[[u32; 3]],
+    ids: &[u32],
+) -> (Vec<u32>, Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let mut local = vec![u32::MAX; p.len()];
+    let mut vertices = Vec::new();
+    let tris = ids
+        .iter()
+        .map(|&k| {
+            f[k as usize].map(|v| {
+                if local[v as usize] == u32::MAX {
+                    local[v as usize] = vertices.len() as u32;
+                    vertices.push(v);
+                }
+                local[v as usize]
+            })
+        })
+        .collect();
+    let points = vertices.iter().map(|&v| p[v as usize]).collect();
+    (vertices, points, tris)
+}
+
 /// `sub_mesh` is `try_new` on the same faces (renumbered in order of first use), without
 /// the checks the whole passed: the same mesh where the subset is valid, the same error
 /// where a vertex's faces split into two fans, on random subsets of a grid.
@@ -327,21 +353,7 @@ fn a_sub_mesh_is_the_mesh_of_its_faces() {
         if faces.is_empty() {
             continue;
         }
-        let mut local = vec![u32::MAX; p.len()];
-        let mut vertices = Vec::new();
-        let tris: Vec<[u32; 3]> = faces
-            .iter()
-            .map(|&k| {
-                f[k as usize].map(|v| {
-                    if local[v as usize] == u32::MAX {
-                        local[v as usize] = vertices.len() as u32;
-                        vertices.push(v);
-                    }
-                    local[v as usize]
-                })
-            })
-            .collect();
-        let points = vertices.iter().map(|&v| p[v as usize]).collect();
+        let (vertices, points, tris) = renumbered(&p, &f, &faces);
         match (TriMesh::try_new(points, tris), whole.sub_mesh(&faces)) {
             (Ok(a), Ok((b, kept))) => {
                 assert_eq!(kept, vertices);
@@ -367,13 +379,7 @@ fn a_sub_mesh_is_the_mesh_of_its_faces() {
     );
     // a face listed twice and no face at all: the errors `try_new` gives
     let twice = [3u32, 7, 3];
-    let tris: Vec<[u32; 3]> = twice.iter().map(|&k| f[k as usize]).collect();
-    let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    let renumber = |v: u32| used.binary_search(&v).expect("used") as u32;
-    let tris: Vec<[u32; 3]> = tris.iter().map(|t| t.map(renumber)).collect();
-    let points = used.iter().map(|&v| p[v as usize]).collect();
+    let (_, points, tris) = renumbered(&p, &f, &twice);
     let expected = TriMesh::try_new(points, tris).expect_err("a face twice");
     assert_eq!(whole.sub_mesh(&twice).expect_err("a face twice"), expected);
     assert_eq!(

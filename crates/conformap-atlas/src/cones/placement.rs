@@ -193,34 +193,9 @@ impl<'a> Columns<'a> {
         }
     }
 
-    fn dot(&mut self, a: u32, b: u32) -> f64 {
-        let key = (a.min(b), a.max(b));
-        if let Some(&d) = self.dots.get(&key) {
-            return d;
-        }
-        self.column(a);
-        self.column(b);
-        let d = self.cache[&a]
-            .iter()
-            .zip(&self.cache[&b])
-            .map(|(x, y)| x * y)
-            .sum();
-        self.dots.insert(key, d);
-        d
-    }
-
-    fn rhs_dot(&mut self, a: u32) -> f64 {
-        if let Some(&d) = self.rhs_dots.get(&a) {
-            return d;
-        }
-        self.column(a);
-        let d = self.cache[&a]
-            .iter()
-            .zip(&self.rhs)
-            .map(|(x, y)| x * y)
-            .sum();
-        self.rhs_dots.insert(a, d);
-        d
+    /// The product of the columns of `a` and `b`, filled by [`Self::fill_dots`].
+    fn dot(&self, a: u32, b: u32) -> f64 {
+        self.dots[&(a.min(b), a.max(b))]
     }
 
     /// The products of the columns of `vertices` with each other and with the right-hand
@@ -350,7 +325,7 @@ fn best_with(cols: &mut Columns<'_>, vertices: &[u32], valid: bool) -> Option<(V
             gram[i * c + j] = d;
             gram[j * c + i] = d;
         }
-        rhs[i] = cols.rhs_dot(vertices[i]);
+        rhs[i] = cols.rhs_dots[&vertices[i]];
     }
     let total = cols.metric.closed().then(|| cols.metric.total_defect());
     // active set: a cone whose best defect leaves no positive angle is held at the bound
